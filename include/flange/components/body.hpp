@@ -1,0 +1,106 @@
+// Body: a rigid body of mass m and inertia J at frame_a.
+//
+//   v = ṙ₁                   F₁ = R₁·m·(v̇ − g)
+//   ω̃ = R₁·Ṙ₁'               M₁ = J·ω̇ + ω × (J·ω)
+//
+// v (world coordinates) and ω (frame coordinates) are internal variables; g
+// is the World's gravity. F₁, M₁ are the cut force and torque the connection
+// exerts on the body, in frame_a coordinates.
+//
+// Body<Name, cm::offset> adds Modelica's centre-of-mass offset r_CM (frame_a
+// coordinates; J is then about the centre of mass, resolved in frame_a):
+//
+//   F₁ = m·(R₁·(v̇ − g) + ω̇ × r_CM + ω × (ω × r_CM))
+//   M₁ = J·ω̇ + ω × (J·ω) + r_CM × F₁
+#pragma once
+#include <boost/hana/tuple.hpp>
+
+#include "flange/components/component.hpp"
+#include "flange/components/frame_kinematics.hpp"
+#include "flange/math/rotation.hpp"
+
+namespace flange {
+
+namespace cm {
+struct at_frame {};  ///< the centre of mass is at frame_a (the paper's Body)
+struct offset {};    ///< the centre of mass is at r_CM from frame_a
+}  // namespace cm
+
+template <fixed_string Name, class CM = cm::at_frame>
+class Body {
+ public:
+  static constexpr auto name = Name;
+  static constexpr std::string_view type_name = "Body";
+  static constexpr role kind = role::body;
+  static constexpr std::array<std::string_view, 1> frames{"frame_a"};
+  static constexpr std::array<internal_decl, 2> internals{
+      {{"v", expr::var_kind::vec}, {"ω", expr::var_kind::vec}}};
+  static constexpr bool has_cm_offset = std::is_same_v<CM, cm::offset>;
+
+  struct params {
+    double m;
+    Mat3d J = Mat3d::Zero();
+    Vec3d r_cm = Vec3d::Zero();
+  };
+
+  explicit Body(params p) : m_(p.m), J_(p.J), r_cm_(p.r_cm) {
+    detail::require_finite(name.view(), "Body", "m (mass)", m_);
+    if (m_ < 0) throw parameter_error(detail::concat("Body \"", name.view(), "\": mass m = ", m_, " is negative"));
+    detail::require_inertia(name.view(), "Body", J_);
+    detail::require_finite(name.view(), "Body", "r_cm", r_cm_);
+    if (!has_cm_offset && !r_cm_.isZero(0.0))
+      throw parameter_error(detail::concat("Body \"", name.view(), "\": r_cm = [", r_cm_.transpose(),
+                                           "] is not zero; declare the body as Body<\"", name.view(),
+                                           "\", cm::offset> to give it a centre-of-mass offset"));
+  }
+
+  [[nodiscard]] double m() const { return m_; }
+  [[nodiscard]] const Mat3d& J() const { return J_; }
+  [[nodiscard]] const Vec3d& r_cm() const { return r_cm_; }
+
+  static constexpr auto v = internal_<1, 0, expr::var_kind::vec>;
+  static constexpr auto w = internal_<1, 1, expr::var_kind::vec>;
+
+  [[nodiscard]] auto equations() const {
+    using namespace expr;
+    const param<double> m{m_, "m"};
+    const param<Mat3d> J{J_, "J"};
+    if constexpr (!has_cm_offset) {
+      return boost::hana::make_tuple(eq(v, der(r_<0>)),                                    //
+                                     skew_eq(tilde(w), R_<0> * transpose(der(R_<0>))),     //
+                                     eq(F_<0>, R_<0> * m * (der(v) - gravity{})),          //
+                                     eq(M_<0>, J * der(w) + cross(w, J * w)));
+    } else {
+      const param<Vec3d> c{r_cm_, "r_CM"};
+      return boost::hana::make_tuple(
+          eq(v, der(r_<0>)),                                 //
+          skew_eq(tilde(w), R_<0> * transpose(der(R_<0>))),  //
+          eq(F_<0>, m * (R_<0> * (der(v) - gravity{}) + cross(der(w), c) + cross(w, cross(w, c)))),
+          eq(M_<0>, J * der(w) + cross(w, J * w) + cross(c, F_<0>)));
+    }
+  }
+
+  /// Mass, first moment h = m·r_CM and inertia about frame_a's origin, all in
+  /// frame_a coordinates: the body's spatial inertia.
+  [[nodiscard]] Mat3d inertia_about_frame() const {
+    const Mat3d c = tilde<double>(r_cm_);
+    return J_ - m_ * c * c;
+  }
+
+  /// The cut force and torque on the body (frame_a coordinates) for a given
+  /// motion of frame_a: the right-hand sides of the equations above.
+  template <class T>
+  [[nodiscard]] wrench<T> flows(const frame_kinematics<T>& k, const Vec3<T>& g) const {
+    const Mat3<T> J = J_.cast<T>();
+    const Vec3<T> c = r_cm_.cast<T>();
+    const Vec3<T> F = T(m_) * (k.R * (k.a - g) + k.wd.cross(c) + k.w.cross(k.w.cross(c)));
+    return {F, J * k.wd + k.w.cross(J * k.w) + c.cross(F)};
+  }
+
+ private:
+  double m_;
+  Mat3d J_;
+  Vec3d r_cm_;
+};
+
+}  // namespace flange

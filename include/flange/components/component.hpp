@@ -1,0 +1,142 @@
+// What every component declares, and the vocabulary its equations are written in.
+//
+// A component is a type with
+//   name          fixed_string, unique in a scene (it is in the type: Body<"mass">)
+//   kind          its role in the scene's structure (world, joint, rigid edge,
+//                 body, force element)
+//   frames        the names of its frame connectors ("frame_a", "frame_b")
+//   internals     its internal variables (φ, R_rel, v, ω …) with their kinds
+//   equations()   its equations, as expression templates over the local
+//                 variable slots declared here.
+// Local slot numbering: frame k owns slots 4k..4k+3 (r, R, F, M); internal i is
+// slot 4·(number of frames) + i. The scene maps slots to the flattened DAE
+// vector; a component never knows where its variables live.
+#pragma once
+#include <array>
+#include <cmath>
+#include <string_view>
+#include <type_traits>
+
+#include <Eigen/Eigenvalues>
+
+#include "flange/detail/fixed_string.hpp"
+#include "flange/equations/expr.hpp"
+#include "flange/errors.hpp"
+#include "flange/scene/diagnostics.hpp"
+#include "flange/math/types.hpp"
+
+namespace flange {
+
+enum class role { world, joint, rigid, body, force };
+
+struct internal_decl {
+  std::string_view name;
+  expr::var_kind kind;
+};
+
+/// Frame variables of local frame K.
+template <int K> inline constexpr expr::var<4 * K + 0, expr::var_kind::vec> r_{};
+template <int K> inline constexpr expr::var<4 * K + 1, expr::var_kind::rot> R_{};
+template <int K> inline constexpr expr::var<4 * K + 2, expr::var_kind::vec> F_{};
+template <int K> inline constexpr expr::var<4 * K + 3, expr::var_kind::vec> M_{};
+/// Internal variable I of a component with NF frames.
+template <int NF, int I, expr::var_kind K> inline constexpr expr::var<4 * NF + I, K> internal_{};
+
+template <class C>
+concept Component = requires {
+  { C::name.view() } -> std::convertible_to<std::string_view>;
+  { C::kind } -> std::convertible_to<role>;
+  C::frames.size();
+  C::internals.size();
+};
+
+// ------------------------------------------------------------ inputs
+
+/// The minimal state (joint coordinates q and rates q̇, in the order the joints
+/// appear in the scene) as an input callable sees it.
+template <class T>
+struct joint_state {
+  const T* q_;
+  const T* qd_;
+  int n;
+  [[nodiscard]] T q(int i) const { return q_[i]; }
+  [[nodiscard]] T qd(int i) const { return qd_[i]; }
+};
+
+/// Evaluates an input: a constant, a callable of time, or a callable of time
+/// and joint state. Resolved at compile time; no virtual call, no std::function.
+/// A constant input: a number or an Eigen vector (Eigen 3.4 objects are
+/// "invocable" with an index, so they must be told apart from callables first).
+template <class In>
+inline constexpr bool is_constant_input = std::is_arithmetic_v<In> || std::is_base_of_v<Eigen::EigenBase<In>, In>;
+
+template <class T, class In>
+auto eval_input(const In& in, const T& t, const joint_state<T>& x) {
+  if constexpr (is_constant_input<In>) return expr::detail::cast<T>(in);
+  else if constexpr (std::is_invocable_v<const In&, const T&>) return expr::detail::cast<T>(in(t));
+  else if constexpr (std::is_invocable_v<const In&, const T&, const joint_state<T>&>)
+    return expr::detail::cast<T>(in(t, x));
+  else static_assert(always_false<In>, "flange: an input is a number, an Eigen vector, a callable f(t) or f(t, x)");
+}
+
+// ------------------------------------------------------------ validation
+
+namespace detail {
+
+template <class V>
+bool all_finite(const V& v) {
+  if constexpr (std::is_arithmetic_v<V>) return std::isfinite(v);
+  else return v.allFinite();
+}
+
+template <class V>
+void require_finite(std::string_view component, std::string_view kind, std::string_view what, const V& v) {
+  if (!all_finite(v))
+    throw parameter_error(concat(kind, " \"", component, "\": parameter ", what, " is not finite (",
+                                 [&] {
+                                   std::ostringstream os;
+                                   if constexpr (std::is_arithmetic_v<V>) os << v;
+                                   else os << v.transpose();
+                                   return os.str();
+                                 }(),
+                                 ")"));
+}
+
+/// A unit axis from a user vector: finite and non-zero, then normalised (as
+/// Modelica normalises a joint axis).
+inline Vec3d unit_axis(std::string_view component, std::string_view kind, const Vec3d& n) {
+  require_finite(component, kind, "n (axis)", n);
+  const double len = n.norm();
+  if (!(len > 1e-12))
+    throw parameter_error(concat(kind, " \"", component, "\": axis n = [", n.transpose(),
+                                 "] has length ", len, "; give a non-zero direction"));
+  return n / len;
+}
+
+/// A physical inertia tensor: finite, symmetric, positive semi-definite, and
+/// its principal moments obey the triangle inequality.
+inline void require_inertia(std::string_view component, std::string_view kind, const Mat3d& J) {
+  require_finite(component, kind, "J (inertia)", J);
+  const double scale = std::max(J.cwiseAbs().maxCoeff(), 1e-300);
+  auto show = [&] {
+    std::ostringstream os;
+    os << "[" << J.row(0) << "; " << J.row(1) << "; " << J.row(2) << "]";
+    return os.str();
+  };
+  if ((J - J.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
+    throw parameter_error(concat(kind, " \"", component, "\": inertia J = ", show(), " is not symmetric"));
+  const Eigen::Vector3d lam = Eigen::SelfAdjointEigenSolver<Mat3d>(J, Eigen::EigenvaluesOnly).eigenvalues();
+  const double tol = 1e-12 * scale;
+  if (lam.minCoeff() < -tol)
+    throw parameter_error(concat(kind, " \"", component, "\": inertia J = ", show(),
+                                 " is not positive semi-definite (smallest principal moment ", lam.minCoeff(), ")"));
+  for (int i = 0; i < 3; ++i)
+    if (lam(i) > lam((i + 1) % 3) + lam((i + 2) % 3) + tol)
+      throw parameter_error(concat(kind, " \"", component, "\": inertia J = ", show(),
+                                   " breaks the triangle inequality: principal moment ", lam(i),
+                                   " exceeds the sum of the other two (", lam((i + 1) % 3) + lam((i + 2) % 3),
+                                   ")"));
+}
+
+}  // namespace detail
+}  // namespace flange

@@ -1,0 +1,117 @@
+// The DAE residual F(t, y, ẏ) = 0 of a scene, over every flattened variable.
+//
+// Rows: each component's equations in scene order, then for each connection
+// set (in paper order) the potentials equal (r and R, k−1 times each) and the
+// flows summed to zero (F and M). A frame connected to nothing is a set of
+// one: F = 0, M = 0. Vector equations give 3 rows, scalar equations 1, and an
+// orientation equation 3 (Modelica's equalityConstraint).
+#pragma once
+#include <Eigen/Core>
+
+#include "flange/components/component.hpp"
+#include "flange/scene/scene.hpp"
+
+namespace flange {
+
+template <class S, class T>
+using dae_vector = Eigen::Matrix<T, S::n_storage, 1>;
+template <class S, class T>
+using residual_vector = Eigen::Matrix<T, S::n_equations, 1>;
+
+namespace detail {
+
+/// How expression leaves of component CI find their numbers in y and ẏ.
+template <class S, int CI, class T>
+struct eval_context {
+  using scalar = T;
+  const T* y;
+  const T* yd;
+  T t;
+  Vec3<T> g;
+  joint_state<T> x;
+
+  template <int Slot, expr::var_kind K>
+  auto slot(bool derivative) const {
+    constexpr int off = S::template slot_offset<CI>(Slot);
+    const T* p = (derivative ? yd : y) + off;
+    if constexpr (K == expr::var_kind::scalar) return p[0];
+    else if constexpr (K == expr::var_kind::vec) return Vec3<T>(p[0], p[1], p[2]);
+    else return Mat3<T>(Eigen::Map<const Mat3<T>>(p));
+  }
+  [[nodiscard]] const Vec3<T>& gravity() const { return g; }
+  template <class In>
+  auto input(const In& in) const {
+    return eval_input(in, t, x);
+  }
+};
+
+/// Offset in y of each joint's coordinate (its first internal: φ or s).
+template <class S>
+constexpr auto joint_coordinate_offsets() {
+  std::array<int, S::n_q == 0 ? 1 : S::n_q> off{};
+  [&]<int... I>(std::integer_sequence<int, I...>) {
+    (
+        [&] {
+          if constexpr (S::template component_type<I>::kind == role::joint)
+            off[S::tree.q_index[I]] = S::template slot_offset<I>(4 * 2);
+        }(),
+        ...);
+  }(std::make_integer_sequence<int, S::n_components>{});
+  return off;
+}
+
+}  // namespace detail
+
+/// F(t, y, ẏ): one row per scalar equation, zero on a consistent solution.
+template <class S, class T, class Vy, class Vyd>
+[[nodiscard]] residual_vector<S, T> residual(const S& scene, const T& t, const Vy& y, const Vyd& yd) {
+  static_assert(Vy::SizeAtCompileTime == S::n_storage && Vyd::SizeAtCompileTime == S::n_storage,
+                "flange: residual() takes y and ẏ of length Scene::n_storage (see dae_vector<Scene, T>)");
+  residual_vector<S, T> out;
+  constexpr auto qoff = detail::joint_coordinate_offsets<S>();
+  std::array<T, qoff.size()> q{}, qd{};
+  for (int i = 0; i < S::n_q; ++i) {
+    q[i] = y(qoff[i]);
+    qd[i] = yd(qoff[i]);
+  }
+  const joint_state<T> x{q.data(), qd.data(), S::n_q};
+  const Vec3<T> g = scene.gravity().template cast<T>();
+  int row = 0;
+  [&]<int... I>(std::integer_sequence<int, I...>) {
+    (
+        [&] {
+          const detail::eval_context<S, I, T> ctx{y.data(), yd.data(), t, g, x};
+          boost::hana::for_each(scene.template component<I>().equations(), [&](const auto& e) {
+            e.residue(ctx, [&](int i) -> T& { return out(row + i); });
+            row += std::remove_cvref_t<decltype(e)>::size;
+          });
+        }(),
+        ...);
+  }(std::make_integer_sequence<int, S::n_components>{});
+  constexpr auto& topo = S::topology;
+  for (int s = 0; s < topo.n_sets; ++s) {
+    int first = -1;
+    Vec3<T> Fsum = Vec3<T>::Zero(), Msum = Vec3<T>::Zero();
+    for (int i = 0; i < S::n_frames; ++i) {
+      const int f = topo.by_number[i];
+      if (topo.set_of[f] != s) continue;
+      Fsum += y.template segment<3>(S::frame_offset(f, 2));
+      Msum += y.template segment<3>(S::frame_offset(f, 3));
+      if (first < 0) {
+        first = f;
+        continue;
+      }
+      out.template segment<3>(row) = y.template segment<3>(S::frame_offset(first, 0)) - y.template segment<3>(S::frame_offset(f, 0));
+      row += 3;
+      const Eigen::Map<const Mat3<T>> R1(y.data() + S::frame_offset(first, 1)), R2(y.data() + S::frame_offset(f, 1));
+      out.template segment<3>(row) = orientation_residue<T>(R1, R2);
+      row += 3;
+    }
+    out.template segment<3>(row) = Fsum;
+    out.template segment<3>(row + 3) = Msum;
+    row += 6;
+  }
+  return out;
+}
+
+}  // namespace flange

@@ -1,0 +1,40 @@
+// The exceptions flange throws. Every message names what went wrong, where, and
+// with which value, so that a bad parameter or a numerical breakdown never
+// shows up later as a silent NaN.
+#pragma once
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace flange {
+
+/// Base of every flange exception.
+struct error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// A parameter that no physical scene can have (negative mass, zero axis, NaN…),
+/// thrown at construction. The message names the component and the value.
+struct parameter_error : error {
+  using error::error;
+};
+
+/// A breakdown during simulation (singular mass matrix, non-finite state,
+/// stepper failure). The message gives the time, the state and the reason.
+struct simulation_error : error {
+  simulation_error(const std::string& what, double t) : error(what), time(t) {}
+  double time;
+};
+
+namespace detail {
+template <class... Args>
+[[nodiscard]] std::string concat(const Args&... args) {
+  std::ostringstream os;
+  os.precision(17);
+  (os << ... << args);
+  return os.str();
+}
+}  // namespace detail
+
+}  // namespace flange

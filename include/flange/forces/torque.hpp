@@ -1,0 +1,68 @@
+// Torque: relays an external torque M_ext (frame_a coordinates) into the
+// system, acting on frame_b and reacting on frame_a.
+//
+//   F₁ = 0                   M₁ = M_ext
+//   F₂ = 0                   M₂ = −(R₂·R₁')·M_ext
+//
+// Frames 1, 2 are frame_a, frame_b. M_ext is a constant 3-vector, a callable
+// M_ext(t), or M_ext(t, x) of the joint state x (see joint_state). A force
+// element: it adds no kinematic constraint.
+#pragma once
+#include <boost/hana/tuple.hpp>
+
+#include "flange/components/component.hpp"
+#include "flange/components/frame_kinematics.hpp"
+
+namespace flange {
+
+template <fixed_string Name, class In = Vec3d>
+class Torque {
+ public:
+  static constexpr auto name = Name;
+  static constexpr std::string_view type_name = "Torque";
+  static constexpr role kind = role::force;
+  static constexpr std::array<std::string_view, 2> frames{"frame_a", "frame_b"};
+  static constexpr std::array<internal_decl, 0> internals{};
+
+  struct params {
+    In M_ext;
+  };
+  explicit Torque(params p) : M_ext_(std::move(p.M_ext)) {
+    if constexpr (is_constant_input<In>)
+      detail::require_finite(name.view(), "Torque", "M_ext", M_ext_);
+  }
+
+  template <class T>
+  [[nodiscard]] Vec3<T> torque(const T& t, const joint_state<T>& x) const {
+    return eval_input(M_ext_, t, x);
+  }
+
+  [[nodiscard]] auto equations() const {
+    using namespace expr;
+    const input_node<In, shape::vec> M{{}, &M_ext_, "M_ext"};
+    return boost::hana::make_tuple(eq(F_<0>, zero<shape::vec>{}),  //
+                                   eq(F_<1>, zero<shape::vec>{}),  //
+                                   eq(M_<0>, M),                   //
+                                   eq(M_<1>, -(R_<1> * transpose(R_<0>) * M)));
+  }
+
+  /// The flows for given orientations R_a, R_b of the two frames.
+  template <class T>
+  [[nodiscard]] std::pair<wrench<T>, wrench<T>> flows(const T& t, const joint_state<T>& x, const Mat3<T>& Ra,
+                                                      const Mat3<T>& Rb) const {
+    const Vec3<T> M = torque(t, x);
+    return {{Vec3<T>::Zero(), M}, {Vec3<T>::Zero(), -(Rb * Ra.transpose() * M)}};
+  }
+
+ private:
+  In M_ext_;
+};
+
+/// Torque<"motor">'s input type deduced: torque<"motor">(fn) or torque<"motor">(vec).
+template <fixed_string Name, class In>
+auto torque(In M_ext) {
+  if constexpr (std::is_base_of_v<Eigen::MatrixBase<In>, In>) return Torque<Name, Vec3d>({Vec3d(M_ext)});
+  else return Torque<Name, In>({std::move(M_ext)});
+}
+
+}  // namespace flange

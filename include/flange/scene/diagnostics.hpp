@@ -1,0 +1,88 @@
+// Compile-time diagnostics. Each structural mistake instantiates one of these
+// templates with the offending component or connection as its argument, so
+// that the compiler prints both the message (what is wrong and the fix) and
+// the culprit's type, e.g.
+//
+//   In instantiation of 'struct flange::diagnostic::not_connected_to_world<flange::Body<"mass">>':
+//   error: static assertion failed: flange: this component is not tied to the World ...
+//
+// See docs/diagnostics.md for each message with an example.
+#pragma once
+
+namespace flange {
+
+template <class... T>
+inline constexpr bool always_false = false;
+
+template <int N> struct equations_declared {};
+template <int N> struct equations_needed {};
+template <int N> struct unknowns {};
+
+namespace diagnostic {
+
+template <class Connection>
+struct connection_names_no_frame {
+  static_assert(always_false<Connection>,
+                "flange: this connect<\"component.frame\", ...> names a frame that does not exist; check the component "
+                "name (its template argument) and the frame name (frame_a or frame_b; World has frame_b, Body has "
+                "frame_a)");
+};
+template <class Connection>
+struct frame_listed_twice_in_connection {
+  static_assert(always_false<Connection>,
+                "flange: this connection lists the same frame twice; a connection joins two different frames");
+};
+template <class Connection>
+struct frame_connected_twice_in_one_set {
+  static_assert(always_false<Connection>,
+                "flange: this connection joins two frames that are already in one connection set through other "
+                "connections, so its equations would be redundant; remove it");
+};
+template <class Component>
+struct duplicate_component_name {
+  static_assert(always_false<Component>,
+                "flange: two components have this name; give every component of a scene a unique name");
+};
+template <class... Components>
+struct no_world {
+  static_assert(always_false<Components...>,
+                "flange: the scene has no World; add World<\"world\">{} and connect its frame_b");
+};
+template <class SecondWorld>
+struct two_worlds {
+  static_assert(always_false<SecondWorld>,
+                "flange: the scene has a second World (this one); a scene has exactly one World, remove one");
+};
+template <class Component>
+struct not_connected_to_world {
+  static_assert(always_false<Component>,
+                "flange: this component is not tied to the World by any connection path; connect one of its frames "
+                "to the World's frame_b, directly or through other components");
+};
+template <class Component, class Declared, class Needed>
+struct unbalanced_component {
+  static_assert(always_false<Component>,
+                "flange: unbalanced scene: this component declares a different number of scalar equations than it "
+                "has unknowns minus flow variables (the counts are the template arguments); fix its equations()");
+};
+template <class Counts>
+struct unbalanced_scene {
+  static_assert(always_false<Counts>,
+                "flange: unbalanced scene: the number of scalar equations differs from the number of unknowns (the "
+                "counts are the template arguments); check each component's equations()");
+};
+template <class Component>
+struct kinematic_loop {
+  static_assert(always_false<Component>,
+                "flange: this joint or rigid component closes a kinematic loop; the generated dynamics handle trees "
+                "only, so remove it or cut the loop");
+};
+template <class Component>
+struct not_tied_through_joints {
+  static_assert(always_false<Component>,
+                "flange: this component is tied to the World only through force elements (or not at all), so it "
+                "has no joint coordinates; connect it to the World through joints and rigid components");
+};
+
+}  // namespace diagnostic
+}  // namespace flange

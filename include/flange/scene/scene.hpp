@@ -1,0 +1,256 @@
+// Scene: components and connections composed at compile time.
+//
+//     auto arm = flange::scene(
+//         World<"world">{}, Torque<"motor">({.M_ext = M}), Revolute<"joint", axis::z>{},
+//         FixedTranslation<"rod">({.d = {d, 0, 0}}), Body<"mass">({.m = m, .J = J}),
+//         connect<"world.frame_b", "joint.frame_a">, connect<"world.frame_b", "motor.frame_a">,
+//         connect<"joint.frame_b", "rod.frame_a">, connect<"joint.frame_b", "motor.frame_b">,
+//         connect<"rod.frame_b", "mass.frame_a">);
+//
+// The scene's type carries its whole structure; its value carries parameters.
+// Everything structural (connection sets, counts, layout of the flattened DAE
+// vector, kinematic tree) is a constant expression, checked by static_asserts
+// whose messages name the culprit (scene/diagnostics.hpp).
+#pragma once
+#include <array>
+#include <string_view>
+#include <type_traits>
+
+#include <boost/hana/at.hpp>
+#include <boost/hana/filter.hpp>
+#include <boost/hana/for_each.hpp>
+#include <boost/hana/tuple.hpp>
+#include <boost/hana/type.hpp>
+#include <boost/hana/unpack.hpp>
+
+#include "flange/components/component.hpp"
+#include "flange/scene/connect.hpp"
+#include "flange/scene/diagnostics.hpp"
+#include "flange/scene/topology.hpp"
+
+namespace flange {
+
+namespace detail {
+template <class...>
+struct type_list {};
+
+template <int I, class... Ts>
+using nth_t = std::tuple_element_t<I, std::tuple<Ts...>>;
+
+/// Instantiates Diag<the I-th of Ts> when I ≥ 0, which fails with its message.
+template <int I, template <class...> class Diag, class... Ts>
+constexpr bool report() {
+  if constexpr (I >= 0) (void)sizeof(Diag<nth_t<I, Ts...>>);
+  return true;
+}
+
+template <class E>
+struct equation_count;
+template <class... E>
+struct equation_count<boost::hana::tuple<E...>> {
+  static constexpr int value = (0 + ... + E::size);
+};
+
+template <class C>
+constexpr int equations_of() {
+  return equation_count<decltype(std::declval<const C&>().equations())>::value;
+}
+template <class C>
+constexpr int internal_unknowns() {
+  int n = 0;
+  for (const auto& i : C::internals) n += expr::unknown_count(i.kind);
+  return n;
+}
+template <class C>
+constexpr int internal_storage() {
+  int n = 0;
+  for (const auto& i : C::internals) n += expr::storage_size(i.kind);
+  return n;
+}
+template <class C>
+constexpr bool locally_balanced() {
+  // Modelica's rule: a component's own equations number its unknowns minus
+  // the flow variables of its connectors (those come from the connections).
+  return equations_of<C>() == internal_unknowns<C>() + 12 * int(C::frames.size()) - 6 * int(C::frames.size());
+}
+template <class C>
+constexpr int needed_equations() {
+  return internal_unknowns<C>() + 6 * int(C::frames.size());
+}
+}  // namespace detail
+
+inline constexpr int frame_storage = 18;  // r (3), R (9), F (3), M (3)
+inline constexpr std::array<int, 4> frame_var_offset{0, 3, 12, 15};
+
+template <class Components, class Connections>
+class Scene;
+
+template <Component... Cs, class... Ks>
+class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
+ public:
+  static constexpr int n_components = sizeof...(Cs);
+  static constexpr int n_connections = sizeof...(Ks);
+  static constexpr int n_frames = (0 + ... + int(Cs::frames.size()));
+  using component_types = detail::type_list<Cs...>;
+  template <int I>
+  using component_type = detail::nth_t<I, Cs...>;
+
+ private:
+  static constexpr auto make_table() {
+    detail::scene_table<n_components, n_frames, n_connections> t{};
+    int c = 0, base = 0;
+    (
+        [&] {
+          t.names[c] = Cs::name.view();
+          t.kinds[c] = Cs::kind;
+          t.nframes[c] = int(Cs::frames.size());
+          t.frame_base[c] = base;
+          for (int k = 0; k < int(Cs::frames.size()); ++k) t.frame_names[c][k] = Cs::frames[k];
+          base += int(Cs::frames.size());
+          ++c;
+        }(),
+        ...);
+    int k = 0;
+    ((t.conn_a[k] = Ks::a, t.conn_b[k] = Ks::b, ++k), ...);
+    return t;
+  }
+
+ public:
+  static constexpr auto table = make_table();
+  static constexpr auto topology = detail::analyze(table);
+  static constexpr auto tree = detail::build_tree(table, topology);
+
+  // ---------------------------------------------------------- diagnostics
+  static_assert((detail::report<topology.bad_name_connection, diagnostic::connection_names_no_frame, Ks...>()));
+  static_assert((detail::report<topology.self_connection, diagnostic::frame_listed_twice_in_connection, Ks...>()));
+  static_assert((detail::report<topology.redundant_connection, diagnostic::frame_connected_twice_in_one_set, Ks...>()));
+  static_assert((detail::report<topology.duplicate_name, diagnostic::duplicate_component_name, Cs...>()));
+  static_assert((detail::report<topology.n_worlds == 0 ? 0 : -1, diagnostic::no_world, detail::type_list<Cs...>>()));
+  static_assert((detail::report<topology.second_world, diagnostic::two_worlds, Cs...>()));
+  static_assert((detail::report<topology.n_worlds == 1 ? topology.unreached : -1, diagnostic::not_connected_to_world,
+                                Cs...>()));
+
+  // ---------------------------------------------------------- counts
+ private:
+  static constexpr int first_unbalanced() {
+    int i = 0, found = -1;
+    ((found < 0 && !detail::locally_balanced<Cs>() ? found = i : 0, ++i), ...);
+    return found;
+  }
+  template <int I>
+  static constexpr bool report_unbalanced() {
+    if constexpr (I >= 0) {
+      using C = component_type<I>;
+      (void)sizeof(diagnostic::unbalanced_component<C, equations_declared<detail::equations_of<C>()>,
+                                                    equations_needed<detail::needed_equations<C>()>>);
+    }
+    return true;
+  }
+
+ public:
+  static constexpr int n_component_equations = (0 + ... + detail::equations_of<Cs>());
+  static constexpr int n_connection_equations = [] {
+    int n = 0;
+    for (int s = 0; s < topology.n_sets; ++s) n += 6 * (topology.set_size[s] - 1) + 6;
+    return n;
+  }();
+  static constexpr int n_equations = n_component_equations + n_connection_equations;
+  static constexpr int n_unknowns = 12 * n_frames + (0 + ... + detail::internal_unknowns<Cs>());
+  static_assert(report_unbalanced<first_unbalanced()>());
+  static_assert((detail::report<(first_unbalanced() < 0 && n_equations != n_unknowns) ? 0 : -1,
+                                diagnostic::unbalanced_scene,
+                                detail::type_list<equations_declared<n_equations>, unknowns<n_unknowns>>>()));
+
+  // ---------------------------------------------------------- layout
+  /// Length of the flattened variable vector y: every frame's r, R (stored as
+  /// 9 numbers, counted as 3 unknowns), F, M, then the components' internals.
+  static constexpr int n_storage = frame_storage * n_frames + (0 + ... + detail::internal_storage<Cs>());
+  static constexpr std::array<int, n_components> internal_base = [] {
+    std::array<int, n_components> b{};
+    int c = 0, off = frame_storage * n_frames;
+    ((b[c++] = off, off += detail::internal_storage<Cs>()), ...);
+    return b;
+  }();
+
+  /// Offset in y of local slot `slot` of component CI.
+  template <int CI>
+  static constexpr int slot_offset(int slot) {
+    using C = component_type<CI>;
+    constexpr int nf = int(C::frames.size());
+    if (slot < 4 * nf) return frame_storage * (table.frame_base[CI] + slot / 4) + frame_var_offset[slot % 4];
+    int off = internal_base[CI];
+    for (int i = 0; i < slot - 4 * nf; ++i) off += expr::storage_size(C::internals[i].kind);
+    return off;
+  }
+  /// Offset in y of variable `which` (0 r, 1 R, 2 F, 3 M) of global frame f.
+  static constexpr int frame_offset(int f, int which) { return frame_storage * f + frame_var_offset[which]; }
+
+  /// Index of the component with this name (a constant expression).
+  static constexpr int index_of(std::string_view name) {
+    for (int c = 0; c < n_components; ++c)
+      if (table.names[c] == name) return c;
+    return -1;
+  }
+  /// Global index of the frame "component.frame".
+  static constexpr int frame_index(std::string_view name) { return detail::find_frame(table, name); }
+
+  // ---------------------------------------------------------- joints
+  static constexpr int n_q = tree.n_q;
+  /// Index in q of the named joint: joints are numbered in scene order.
+  static constexpr int q_index(std::string_view joint) { return tree.q_index[index_of(joint)]; }
+
+  // ---------------------------------------------------------- values
+  explicit Scene(Cs... cs) : components_(std::move(cs)...) {}
+
+  template <int I>
+  [[nodiscard]] const auto& component() const {
+    return boost::hana::at_c<I>(components_);
+  }
+  template <fixed_string Name>
+  [[nodiscard]] const auto& get() const {
+    constexpr int i = index_of(Name.view());
+    static_assert(i >= 0, "flange: the scene has no component of this name");
+    return component<i>();
+  }
+  [[nodiscard]] const auto& components() const { return components_; }
+
+  /// The World's gravity.
+  [[nodiscard]] Vec3d gravity() const { return component<topology.world < 0 ? 0 : topology.world>().g(); }
+
+ private:
+  boost::hana::tuple<Cs...> components_;
+};
+
+namespace detail {
+template <class L, class R>
+struct list_concat;
+template <class... A, class... B>
+struct list_concat<type_list<A...>, type_list<B...>> {
+  using type = type_list<A..., B...>;
+};
+template <class... Args>
+struct split;
+template <>
+struct split<> {
+  using connections = type_list<>;
+};
+template <class A, class... Rest>
+struct split<A, Rest...> {
+  using connections = std::conditional_t<is_connection<A>::value,
+                                         typename list_concat<type_list<A>, typename split<Rest...>::connections>::type,
+                                         typename split<Rest...>::connections>;
+};
+}  // namespace detail
+
+/// Builds a scene from components and connections, in any order.
+template <class... Args>
+auto scene(Args... args) {
+  namespace hana = boost::hana;
+  using connections = typename detail::split<Args...>::connections;
+  auto is_component = [](auto const& a) { return hana::bool_c<!is_connection<std::decay_t<decltype(a)>>::value>; };
+  return hana::unpack(hana::filter(hana::make_tuple(std::move(args)...), is_component), [](auto... c) {
+    return Scene<detail::type_list<decltype(c)...>, connections>(std::move(c)...);
+  });
+}
+
+}  // namespace flange

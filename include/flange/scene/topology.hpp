@@ -1,0 +1,232 @@
+// Structural analysis of a scene, done by constexpr functions over plain
+// arrays (not by template recursion): connection sets by union–find, the
+// paper's frame numbering, reachability from the World, equation and unknown
+// counts, and the kinematic tree the dynamics walk.
+#pragma once
+#include <array>
+#include <string_view>
+
+#include "flange/components/component.hpp"
+
+namespace flange::detail {
+
+inline constexpr int max_frames_per_component = 2;
+
+/// What the analysis needs to know of the components and connections.
+template <int NC, int NF, int NK>
+struct scene_table {
+  std::array<std::string_view, NC> names{};
+  std::array<role, NC> kinds{};
+  std::array<int, NC> nframes{};
+  std::array<int, NC> frame_base{};
+  std::array<std::array<std::string_view, max_frames_per_component>, NC> frame_names{};
+  std::array<std::string_view, NK> conn_a{}, conn_b{};
+};
+
+template <int NC, int NF, int NK>
+struct topology {
+  // --- errors (−1: none)
+  int bad_name_connection = -1;   ///< a connection naming no existing frame
+  int self_connection = -1;       ///< a connection whose two ends are one frame
+  int redundant_connection = -1;  ///< joins two frames already in one set
+  int duplicate_name = -1;        ///< second component with an existing name
+  int n_worlds = 0;
+  int world = -1;          ///< index of the (first) World
+  int second_world = -1;
+  int unreached = -1;      ///< first component with no connection path to the World
+
+  // --- connection sets
+  std::array<int, NK> conn_frame_a{}, conn_frame_b{};
+  std::array<int, NF> set_of{};    ///< frame → set (sets numbered in paper order)
+  std::array<int, NF> number{};    ///< frame → the paper's frame number, 1-based
+  std::array<int, NF> by_number{}; ///< paper number − 1 → frame
+  int n_sets = 0;
+  std::array<int, NF> set_size{};
+
+  [[nodiscard]] constexpr bool ok() const {
+    return bad_name_connection < 0 && self_connection < 0 && redundant_connection < 0 && duplicate_name < 0 &&
+           n_worlds == 1 && unreached < 0;
+  }
+};
+
+constexpr int find_root(std::array<int, 64>& p, int i) {
+  while (p[i] != i) i = p[i] = p[p[i]];
+  return i;
+}
+
+template <int NC, int NF, int NK>
+constexpr int find_frame(const scene_table<NC, NF, NK>& t, std::string_view s) {
+  const auto dot = s.find('.');
+  if (dot == std::string_view::npos) return -1;
+  const auto comp = s.substr(0, dot), frame = s.substr(dot + 1);
+  for (int c = 0; c < NC; ++c)
+    if (t.names[c] == comp)
+      for (int k = 0; k < t.nframes[c]; ++k)
+        if (t.frame_names[c][k] == frame) return t.frame_base[c] + k;
+  return -1;
+}
+
+template <int NC, int NF, int NK>
+constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
+  static_assert(NF <= 64, "flange: scenes have at most 64 frames for now");
+  topology<NC, NF, NK> r{};
+  for (int c = 0; c < NC; ++c) {
+    for (int d = 0; d < c; ++d)
+      if (t.names[c] == t.names[d] && r.duplicate_name < 0) r.duplicate_name = c;
+    if (t.kinds[c] == role::world) {
+      if (++r.n_worlds == 1) r.world = c;
+      else if (r.second_world < 0) r.second_world = c;
+    }
+  }
+  std::array<int, 64> parent{};
+  for (int f = 0; f < NF; ++f) parent[f] = f;
+  for (int k = 0; k < NK; ++k) {
+    const int a = find_frame(t, t.conn_a[k]), b = find_frame(t, t.conn_b[k]);
+    r.conn_frame_a[k] = a;
+    r.conn_frame_b[k] = b;
+    if (a < 0 || b < 0) {
+      if (r.bad_name_connection < 0) r.bad_name_connection = k;
+      continue;
+    }
+    if (a == b) {
+      if (r.self_connection < 0) r.self_connection = k;
+      continue;
+    }
+    const int ra = find_root(parent, a), rb = find_root(parent, b);
+    if (ra == rb) {
+      if (r.redundant_connection < 0) r.redundant_connection = k;
+      continue;
+    }
+    parent[rb] = ra;
+  }
+  // The paper numbers frames in the order the connections first name them;
+  // frames connected to nothing come last, in component order.
+  int next = 0;
+  std::array<bool, NF> numbered{};
+  auto give = [&](int f) {
+    if (f >= 0 && !numbered[f]) {
+      numbered[f] = true;
+      r.number[f] = ++next;
+      r.by_number[next - 1] = f;
+    }
+  };
+  for (int k = 0; k < NK; ++k) {
+    give(r.conn_frame_a[k]);
+    give(r.conn_frame_b[k]);
+  }
+  for (int f = 0; f < NF; ++f) give(f);
+  // Sets in the order of their lowest-numbered frame.
+  std::array<int, 64> set_of_root{};
+  for (auto& s : set_of_root) s = -1;
+  for (int i = 0; i < NF; ++i) {
+    const int f = r.by_number[i];
+    const int root = find_root(parent, f);
+    if (set_of_root[root] < 0) set_of_root[root] = r.n_sets++;
+    r.set_of[f] = set_of_root[root];
+    ++r.set_size[r.set_of[f]];
+  }
+  // Reachability from the World: sets joined by connections, and all frames
+  // of one component joined through the component.
+  if (r.world >= 0) {
+    std::array<bool, NF> reached{};
+    reached[r.set_of[t.frame_base[r.world]]] = true;
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (int c = 0; c < NC; ++c) {
+        bool any = false;
+        for (int k = 0; k < t.nframes[c]; ++k) any = any || reached[r.set_of[t.frame_base[c] + k]];
+        if (!any) continue;
+        for (int k = 0; k < t.nframes[c]; ++k)
+          if (!reached[r.set_of[t.frame_base[c] + k]]) reached[r.set_of[t.frame_base[c] + k]] = grew = true;
+      }
+    }
+    for (int c = 0; c < NC && r.unreached < 0; ++c)
+      if (!reached[r.set_of[t.frame_base[c]]]) r.unreached = c;
+  }
+  return r;
+}
+
+// ------------------------------------------------------------ kinematic tree
+
+/// The kinematic tree: links are the World's rigid cluster (link 0) and one
+/// link per joint; rigid edges (FixedTranslation) join connection sets within a
+/// link. Links are numbered breadth-first, so a parent precedes its children.
+template <int NC, int NF>
+struct tree {
+  int loop = -1;      ///< a joint or rigid edge that closes a kinematic loop
+  int floating = -1;  ///< a component not tied to the World through joints and rigid edges
+  int n_links = 1;
+  int n_q = 0;
+  std::array<int, NC + 1> link_joint{};       ///< link → its joint component
+  std::array<int, NC + 1> link_dir{};         ///< +1: frame_a toward the World; −1: frame_b
+  std::array<int, NC + 1> link_parent{};
+  std::array<int, NC + 1> link_parent_set{};  ///< set holding the joint's parent-side frame
+  std::array<int, NC + 1> link_root_set{};
+  std::array<int, NF> set_link{};             ///< −1: not in the tree
+  std::array<int, NF> set_parent{};           ///< −1: the set is its link's root
+  std::array<int, NF> set_edge{};             ///< rigid component joining set to set_parent
+  std::array<int, NF> set_edge_dir{};
+  std::array<int, NC> q_index{};              ///< joint component → index in q (scene order)
+  std::array<int, NC> link_of_joint{};
+};
+
+template <int NC, int NF, int NK>
+constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topology<NC, NF, NK>& topo) {
+  tree<NC, NF> r{};
+  for (auto& s : r.set_link) s = -1;
+  for (auto& s : r.set_parent) s = -1;
+  for (auto& s : r.set_edge) s = -1;
+  for (int c = 0; c < NC; ++c) {
+    r.q_index[c] = -1;
+    r.link_of_joint[c] = -1;
+    if (t.kinds[c] == role::joint) r.q_index[c] = r.n_q++;
+  }
+  if (!topo.ok()) return r;
+  std::array<bool, NC> used{};
+  std::array<int, NF> queue{};
+  int head = 0, tail = 0;
+  const int root = topo.set_of[t.frame_base[topo.world]];
+  r.set_link[root] = 0;
+  r.link_root_set[0] = root;
+  queue[tail++] = root;
+  while (head < tail) {
+    const int u = queue[head++];
+    for (int e = 0; e < NC; ++e) {
+      if (used[e] || (t.kinds[e] != role::joint && t.kinds[e] != role::rigid)) continue;
+      const int sa = topo.set_of[t.frame_base[e]], sb = topo.set_of[t.frame_base[e] + 1];
+      if (sa != u && sb != u) continue;
+      used[e] = true;
+      const int other = sa == u ? sb : sa;
+      const int dir = sa == u ? 1 : -1;
+      if (sa == sb || r.set_link[other] >= 0) {
+        if (r.loop < 0) r.loop = e;
+        continue;
+      }
+      if (t.kinds[e] == role::joint) {
+        const int L = r.n_links++;
+        r.link_joint[L] = e;
+        r.link_dir[L] = dir;
+        r.link_parent[L] = r.set_link[u];
+        r.link_parent_set[L] = u;
+        r.link_root_set[L] = other;
+        r.link_of_joint[e] = L;
+        r.set_link[other] = L;
+      } else {
+        r.set_link[other] = r.set_link[u];
+        r.set_parent[other] = u;
+        r.set_edge[other] = e;
+        r.set_edge_dir[other] = dir;
+      }
+      queue[tail++] = other;
+    }
+  }
+  for (int c = 0; c < NC && r.floating < 0; ++c) {
+    if (t.kinds[c] == role::world) continue;
+    bool in = true;
+    for (int k = 0; k < t.nframes[c]; ++k) in = in && r.set_link[topo.set_of[t.frame_base[c] + k]] >= 0;
+    if (!in) r.floating = c;
+  }
+  return r;
+}
+
+}  // namespace flange::detail
