@@ -10,3 +10,5 @@
 #include "flange/scene/scene.hpp"
 #include "flange/equations/residual.hpp"
 #include "flange/equations/listing.hpp"
+#include "flange/dynamics/newton_euler.hpp"
+#include "flange/dynamics/articulated_body.hpp"

@@ -24,6 +24,7 @@
 #include <boost/hana/unpack.hpp>
 
 #include "flange/components/component.hpp"
+#include "flange/dynamics/model.hpp"
 #include "flange/scene/connect.hpp"
 #include "flange/scene/diagnostics.hpp"
 #include "flange/scene/topology.hpp"
@@ -200,7 +201,7 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
   static constexpr int q_index(std::string_view joint) { return tree.q_index[index_of(joint)]; }
 
   // ---------------------------------------------------------- values
-  explicit Scene(Cs... cs) : components_(std::move(cs)...) {}
+  explicit Scene(Cs... cs) : components_(std::move(cs)...), model_(detail::build_model(*this)) {}
 
   template <int I>
   [[nodiscard]] const auto& component() const {
@@ -216,9 +217,33 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
 
   /// The World's gravity.
   [[nodiscard]] Vec3d gravity() const { return component<topology.world < 0 ? 0 : topology.world>().g(); }
+  static constexpr bool has_gravity = component_type<topology.world < 0 ? 0 : topology.world>::has_gravity;
+
+  /// Constants the dynamics precompute (link inertias, set offsets).
+  [[nodiscard]] const auto& model() const { return model_; }
+
+  // ---------------------------------------------------------- as an ODE
+  /// The state x = (q, q̇): joint coordinates then rates, joints in scene order.
+  static constexpr int n_state = 2 * n_q;
+  using state_type = std::array<double, n_state>;
+
+  /// ẋ = f(x, t): the Boost.Odeint system signature. Works for any container
+  /// with data() (std::array, Eigen fixed-size vectors) and scalar type.
+  template <class State, class T>
+  void operator()(const State& x, State& dxdt, const T t) const {
+    static_assert(detail::report<(topology.ok() ? tree.loop : -1), diagnostic::kinematic_loop, Cs...>());
+    static_assert(detail::report<(topology.ok() && tree.loop < 0 ? tree.floating : -1),
+                                 diagnostic::not_tied_through_joints, Cs...>());
+    using V = std::remove_cvref_t<decltype(x[0])>;
+    const V* xs = x.data();
+    V* d = dxdt.data();
+    for (int i = 0; i < n_q; ++i) d[i] = xs[n_q + i];
+    accelerations_newton_euler(*this, static_cast<V>(t), xs, xs + n_q, d + n_q);
+  }
 
  private:
   boost::hana::tuple<Cs...> components_;
+  detail::dynamics_model<tree.n_links, (topology.n_sets == 0 ? 1 : topology.n_sets)> model_;
 };
 
 namespace detail {

@@ -168,6 +168,8 @@ struct tree {
   std::array<int, NF> set_edge_dir{};
   std::array<int, NC> q_index{};              ///< joint component → index in q (scene order)
   std::array<int, NC> link_of_joint{};
+  int n_tree_sets = 0;
+  std::array<int, NF> set_order{};            ///< sets in breadth-first order from the World's
 };
 
 template <int NC, int NF, int NK>
@@ -191,6 +193,7 @@ constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topolo
   queue[tail++] = root;
   while (head < tail) {
     const int u = queue[head++];
+    r.set_order[r.n_tree_sets++] = u;
     for (int e = 0; e < NC; ++e) {
       if (used[e] || (t.kinds[e] != role::joint && t.kinds[e] != role::rigid)) continue;
       const int sa = topo.set_of[t.frame_base[e]], sb = topo.set_of[t.frame_base[e] + 1];

@@ -1,0 +1,83 @@
+// What the recursive algorithms precompute at scene construction: every
+// connection set's offset from its link's origin, and every link's rigid-body
+// inertia (all the bodies that move with it, FixedTranslations folded in).
+// These are constants of the scene, so the derivative never recomputes them.
+#pragma once
+#include <array>
+
+#include "flange/components/component.hpp"
+#include "flange/math/rotation.hpp"
+
+namespace flange::detail {
+
+/// Mass m, first moment h = m·c and inertia I about the link origin, all in
+/// link coordinates.
+template <class T>
+struct rigid_inertia {
+  T m{0};
+  Vec3<T> h = Vec3<T>::Zero();
+  Mat3<T> I = Mat3<T>::Zero();
+
+  /// Adds `o`, given in a frame whose origin is at p (no rotation).
+  void add_shifted(const rigid_inertia& o, const Vec3<T>& p) {
+    const Mat3<T> P = tilde<T>(p), H = tilde<T>(o.h);
+    m += o.m;
+    h += o.h + o.m * p;
+    I += o.I - o.m * P * P - P * H - H * P;
+  }
+};
+
+template <int NL, int NS>
+struct dynamics_model {
+  std::array<Vec3d, NS> set_offset{};
+  std::array<rigid_inertia<double>, NL> link{};
+};
+
+template <class S, class F>
+void for_each_component(const S& scene, F&& f) {
+  [&]<int... I>(std::integer_sequence<int, I...>) {
+    (f(std::integral_constant<int, I>{}, scene.template component<I>()), ...);
+  }(std::make_integer_sequence<int, S::n_components>{});
+}
+
+/// Calls f(component) for the component with run-time index c.
+template <class S, class F>
+void visit_component(const S& scene, int c, F&& f) {
+  for_each_component(scene, [&](auto i, const auto& comp) {
+    if (decltype(i)::value == c) f(comp);
+  });
+}
+
+template <class S>
+auto build_model(const S& scene) {
+  constexpr auto& tree = S::tree;
+  constexpr auto& topo = S::topology;
+  dynamics_model<tree.n_links, topo.n_sets == 0 ? 1 : topo.n_sets> model{};
+  model.set_offset.fill(Vec3d::Zero());  // Eigen leaves its vectors uninitialised
+  if constexpr (topo.ok()) {
+    // Sets in breadth-first order: a set's parent is placed before it.
+    for (int i = 0; i < tree.n_tree_sets; ++i) {
+      const int s = tree.set_order[i];
+      if (tree.set_parent[s] < 0) continue;
+      visit_component(scene, tree.set_edge[s], [&](const auto& e) {
+        if constexpr (std::remove_cvref_t<decltype(e)>::kind == role::rigid)
+          model.set_offset[s] = model.set_offset[tree.set_parent[s]] + tree.set_edge_dir[s] * e.d();
+      });
+    }
+    for_each_component(scene, [&](auto i, const auto& c) {
+      using C = std::remove_cvref_t<decltype(c)>;
+      if constexpr (C::kind == role::body) {
+        const int s = topo.set_of[S::table.frame_base[decltype(i)::value]];
+        if (tree.set_link[s] < 0) return;
+        rigid_inertia<double> b;
+        b.m = c.m();
+        b.h = c.m() * c.r_cm();
+        b.I = c.inertia_about_frame();
+        model.link[tree.set_link[s]].add_shifted(b, model.set_offset[s]);
+      }
+    });
+  }
+  return model;
+}
+
+}  // namespace flange::detail
