@@ -12,3 +12,7 @@
 #include "flange/equations/listing.hpp"
 #include "flange/dynamics/newton_euler.hpp"
 #include "flange/dynamics/articulated_body.hpp"
+#include "flange/dynamics/recover.hpp"
+#include "flange/simulate/odeint.hpp"
+#include "flange/models/paper.hpp"
+#include "flange/models/chain.hpp"

@@ -11,9 +11,37 @@ namespace flange {
 template <std::size_t N>
 struct fixed_string {
   char data[N]{};
+  constexpr fixed_string() = default;
   constexpr fixed_string(const char (&s)[N]) { std::copy_n(s, N, data); }
   [[nodiscard]] constexpr std::string_view view() const { return {data, N - 1}; }
   [[nodiscard]] constexpr std::size_t size() const { return N - 1; }
 };
+
+/// a + b, at compile time ("j3" + ".frame_b").
+template <std::size_t A, std::size_t B>
+constexpr fixed_string<A + B - 1> operator+(const fixed_string<A>& a, const fixed_string<B>& b) {
+  fixed_string<A + B - 1> r;
+  std::copy_n(a.data, A - 1, r.data);
+  std::copy_n(b.data, B, r.data + A - 1);
+  return r;
+}
+
+template <std::size_t A, std::size_t B>
+constexpr fixed_string<A + B - 1> operator+(const fixed_string<A>& a, const char (&b)[B]) {
+  return a + fixed_string<B>(b);
+}
+
+/// A name with a number: indexed_name<"link", 3>() == "link3" (0 ≤ I < 100).
+template <fixed_string Prefix, int I>
+constexpr auto indexed_name() {
+  static_assert(I >= 0 && I < 100, "flange: indexed names go up to 99");
+  if constexpr (I < 10) {
+    const char digits[2] = {char('0' + I), 0};
+    return Prefix + fixed_string<2>(digits);
+  } else {
+    const char digits[3] = {char('0' + I / 10), char('0' + I % 10), 0};
+    return Prefix + fixed_string<3>(digits);
+  }
+}
 
 }  // namespace flange

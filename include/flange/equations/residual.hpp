@@ -90,22 +90,22 @@ template <class S, class T, class Vy, class Vyd>
   }(std::make_integer_sequence<int, S::n_components>{});
   constexpr auto& topo = S::topology;
   for (int s = 0; s < topo.n_sets; ++s) {
-    int first = -1;
+    // Members in paper order; the potentials of the first equal those of the
+    // others (all r equations, then all R equations), the flows sum to zero.
+    int members[S::n_frames], k = 0;
+    for (int i = 0; i < S::n_frames; ++i)
+      if (topo.set_of[topo.by_number[i]] == s) members[k++] = topo.by_number[i];
+    for (int j = 1; j < k; ++j, row += 3)
+      out.template segment<3>(row) =
+          y.template segment<3>(S::frame_offset(members[0], 0)) - y.template segment<3>(S::frame_offset(members[j], 0));
+    const Eigen::Map<const Mat3<T>> R1(y.data() + S::frame_offset(members[0], 1));
+    for (int j = 1; j < k; ++j, row += 3)
+      out.template segment<3>(row) =
+          orientation_residue<T>(R1, Eigen::Map<const Mat3<T>>(y.data() + S::frame_offset(members[j], 1)));
     Vec3<T> Fsum = Vec3<T>::Zero(), Msum = Vec3<T>::Zero();
-    for (int i = 0; i < S::n_frames; ++i) {
-      const int f = topo.by_number[i];
-      if (topo.set_of[f] != s) continue;
-      Fsum += y.template segment<3>(S::frame_offset(f, 2));
-      Msum += y.template segment<3>(S::frame_offset(f, 3));
-      if (first < 0) {
-        first = f;
-        continue;
-      }
-      out.template segment<3>(row) = y.template segment<3>(S::frame_offset(first, 0)) - y.template segment<3>(S::frame_offset(f, 0));
-      row += 3;
-      const Eigen::Map<const Mat3<T>> R1(y.data() + S::frame_offset(first, 1)), R2(y.data() + S::frame_offset(f, 1));
-      out.template segment<3>(row) = orientation_residue<T>(R1, R2);
-      row += 3;
+    for (int j = 0; j < k; ++j) {
+      Fsum += y.template segment<3>(S::frame_offset(members[j], 2));
+      Msum += y.template segment<3>(S::frame_offset(members[j], 3));
     }
     out.template segment<3>(row) = Fsum;
     out.template segment<3>(row + 3) = Msum;

@@ -185,6 +185,22 @@ constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topolo
   }
   if (!topo.ok()) return r;
   std::array<bool, NC> used{};
+  // Loops first, by union–find over joints and rigid edges in scene order: the
+  // edge that closes a loop is the last one written, which is the one to name.
+  {
+    std::array<int, 64> uf{};
+    for (int i = 0; i < 64; ++i) uf[i] = i;
+    for (int e = 0; e < NC; ++e) {
+      if (t.kinds[e] != role::joint && t.kinds[e] != role::rigid) continue;
+      const int a = find_root(uf, topo.set_of[t.frame_base[e]]), b = find_root(uf, topo.set_of[t.frame_base[e] + 1]);
+      if (a == b) {
+        if (r.loop < 0) r.loop = e;
+        used[e] = true;  // left out of the tree
+      } else {
+        uf[b] = a;
+      }
+    }
+  }
   std::array<int, NF> queue{};
   int head = 0, tail = 0;
   const int root = topo.set_of[t.frame_base[topo.world]];
@@ -223,12 +239,15 @@ constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topolo
       queue[tail++] = other;
     }
   }
-  for (int c = 0; c < NC && r.floating < 0; ++c) {
-    if (t.kinds[c] == role::world) continue;
-    bool in = true;
-    for (int k = 0; k < t.nframes[c]; ++k) in = in && r.set_link[topo.set_of[t.frame_base[c] + k]] >= 0;
-    if (!in) r.floating = c;
-  }
+  // Report a body or joint before a force element: the element is usually
+  // fine, it is what hangs on it that lacks a joint.
+  for (int pass = 0; pass < 2; ++pass)
+    for (int c = 0; c < NC && r.floating < 0; ++c) {
+      if (t.kinds[c] == role::world || (t.kinds[c] == role::force) != (pass == 1)) continue;
+      bool in = true;
+      for (int k = 0; k < t.nframes[c]; ++k) in = in && r.set_link[topo.set_of[t.frame_base[c] + k]] >= 0;
+      if (!in) r.floating = c;
+    }
   return r;
 }
 

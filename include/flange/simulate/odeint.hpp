@@ -1,0 +1,48 @@
+// The Boost.Odeint boundary.
+//
+// A scene is itself an Odeint system: scene(x, dxdt, t). Its state x = (q, q̇)
+// may be
+//   * Scene::state_type = std::array<double, 2n>, with Odeint's default
+//     range_algebra (the faster choice for small states), or
+//   * an Eigen fixed-size vector, with vector_space_algebra (this header
+//     brings Odeint's Eigen support in).
+// Every explicit stepper works: runge_kutta4, cash_karp54, dopri5 (controlled
+// and dense output), fehlberg78, bulirsch_stoer, adams_bashforth_moulton.
+// Symplectic steppers assume a separable Hamiltonian H = T(p) + V(q); a
+// configuration-dependent mass matrix breaks that, so they apply only to
+// scenes whose mass matrix is constant (e.g. a single revolute joint).
+//
+// record(scene, f) makes an observer that hands f the recovered solution (all
+// DAE variables, cut forces, energy) at every observed time.
+#pragma once
+// Odeint's steppers copy their scratch buffers before first writing them, and
+// GCC 12 flags those copies (-Wuninitialized) at their location in Odeint's
+// headers. The pragma covers only those headers, not flange or user code.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+#include <boost/numeric/odeint.hpp>
+#include <boost/numeric/odeint/external/eigen/eigen.hpp>
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+
+#include "flange/dynamics/recover.hpp"
+
+namespace flange {
+
+namespace odeint = boost::numeric::odeint;
+
+/// The state as an Eigen fixed-size vector.
+template <class S, class T = double>
+using eigen_state = Eigen::Matrix<T, S::n_state, 1>;
+
+/// An Odeint observer calling f(dae_solution) at each observed (x, t).
+template <class S, class F>
+auto record(const S& scene, F f) {
+  return [&scene, f](const auto& x, double t) mutable { f(recover(scene, t, x)); };
+}
+
+}  // namespace flange

@@ -1,0 +1,29 @@
+# Runs one half of a compile-fail pair.
+#   MODE=ok: SRC must compile.
+#   MODE=ko: SRC with -DFLANGE_KO must fail, and the compiler output must
+#            contain every string in EXPECT (the diagnostic and its culprit).
+set(args -std=c++20 -fsyntax-only ${INCLUDES} ${SRC})
+if(MODE STREQUAL "ko")
+  list(APPEND args -DFLANGE_KO)
+endif()
+execute_process(COMMAND ${CXX} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+set(all "${out}${err}")
+if(MODE STREQUAL "ok")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "the ok half did not compile:\n${all}")
+  endif()
+  return()
+endif()
+if(rc EQUAL 0)
+  message(FATAL_ERROR "the ko half compiled, but it must be refused")
+endif()
+foreach(e IN LISTS EXPECT)
+  string(FIND "${all}" "${e}" pos)
+  if(pos EQUAL -1)
+    message(FATAL_ERROR "the ko half failed, but its output lacks\n  ${e}\noutput:\n${all}")
+  endif()
+endforeach()
+# One diagnostic, not a cascade of unrelated errors.
+string(REGEX MATCHALL "error:" errors "${all}")
+list(LENGTH errors n)
+message(STATUS "refused as expected (${n} error lines)")

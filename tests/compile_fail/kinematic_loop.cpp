@@ -1,0 +1,16 @@
+// A FixedTranslation from the arm's end back to the World closes a loop. The
+// residual of such a scene exists; its generated derivative does not.
+#include <flange/flange.hpp>
+using namespace flange;
+auto s = scene(World<"world">{}, Revolute<"joint", axis::z>{}, FixedTranslation<"rod">({.d = {1, 0, 0}}),
+               Body<"mass">({.m = 1.0}), FixedTranslation<"back">({.d = {-1, 0, 0}}),
+               connect<"world.frame_b", "joint.frame_a">, connect<"joint.frame_b", "rod.frame_a">,
+               connect<"rod.frame_b", "mass.frame_a">, connect<"rod.frame_b", "back.frame_a">
+#ifdef FLANGE_KO
+               , connect<"back.frame_b", "world.frame_b">
+#endif
+);
+int main() {
+  std::array<double, 2> x{}, dx{};
+  s(x, dx, 0.0);
+}

@@ -1,0 +1,43 @@
+// Deterministic random parameters and states shared by the tests.
+#pragma once
+#include <random>
+
+#include <flange/models/chain.hpp>
+#include <flange/models/paper.hpp>
+
+namespace flange::test {
+
+inline double uniform(std::mt19937& rng, double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
+
+inline models::robot_arm_params arm_params(std::mt19937& rng) {
+  const double Jz = uniform(rng, 0.01, 1.0);
+  return {.m = uniform(rng, 0.1, 10), .d = uniform(rng, 0.1, 2), .Jx = uniform(rng, 0.01, 2 * Jz), .Jz = Jz,
+          .g = uniform(rng, 1, 20)};
+}
+
+inline models::gantry_crane_params crane_params(std::mt19937& rng) {
+  return {.M = uniform(rng, 0.1, 10), .m = uniform(rng, 0.1, 10), .d = uniform(rng, 0.1, 3), .g = uniform(rng, 1, 20)};
+}
+
+/// A random physical inertia: principal moments obeying the triangle
+/// inequality, turned by a random rotation.
+inline Mat3d random_inertia(std::mt19937& rng) {
+  const double a = uniform(rng, 0.02, 0.1), b = uniform(rng, 0.02, 0.1), c = uniform(rng, std::abs(a - b), a + b);
+  const Mat3d Q = axis_rotation<double>(Vec3d(uniform(rng, -1, 1), uniform(rng, -1, 1), 1).normalized(),
+                                        uniform(rng, -3, 3));
+  return Q * Vec3d(a, b, c).asDiagonal() * Q.transpose();
+}
+
+template <int N>
+models::chain_params<N> chain_params(std::mt19937& rng) {
+  models::chain_params<N> p;
+  for (int i = 0; i < N; ++i) {
+    p.axis[i] = Vec3d(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)).normalized();
+    p.d[i] = Vec3d(uniform(rng, 0.2, 1), uniform(rng, -0.3, 0.3), uniform(rng, -0.3, 0.3));
+    p.m[i] = uniform(rng, 0.2, 2);
+    p.J[i] = random_inertia(rng);
+  }
+  return p;
+}
+
+}  // namespace flange::test
