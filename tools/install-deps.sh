@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Installs, with apt-get, the Debian 12 packages flange needs that are missing.
+# Run as root (or with sudo). Nothing is installed when everything is there.
+#   tools/install-deps.sh            compiler, CMake, Eigen, Boost, Catch2, Google Benchmark
+#   tools/install-deps.sh --plots    also gnuplot, for docs/*.png
+set -euo pipefail
+packages=(g++ cmake make libeigen3-dev libboost-dev catch2 libbenchmark-dev)
+if [[ "${1:-}" == "--plots" ]]; then packages+=(gnuplot-nox); fi
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "install-deps: installing ${missing[*]}"
+  sudo=""
+  if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
