@@ -18,12 +18,24 @@ struct rigid_inertia {
   Vec3<T> h = Vec3<T>::Zero();
   Mat3<T> I = Mat3<T>::Zero();
 
-  /// Adds `o`, given in a frame whose origin is at p (no rotation).
+  /// Adds `o`, given in a frame whose origin is at p (no rotation). With
+  /// ã·b̃ = b·a' − (a·b)·1 the parallel-axis shift
+  ///   I += I_o − m·p̃² − p̃·h̃ − h̃·p̃
+  /// becomes (m|p|² + 2 p·h)·1 − m·p·p' − h·p' − p·h': outer products, no 3×3 products.
   void add_shifted(const rigid_inertia& o, const Vec3<T>& p) {
-    const Mat3<T> P = tilde<T>(p), H = tilde<T>(o.h);
+    add_shifted_mass(o, p);
+    add_shifted_rotational(o, p);
+  }
+  /// The mass and first-moment part of add_shifted.
+  void add_shifted_mass(const rigid_inertia& o, const Vec3<T>& p) {
     m += o.m;
     h += o.h + o.m * p;
-    I += o.I - o.m * P * P - P * H - H * P;
+  }
+  /// The rotational-inertia part of add_shifted.
+  void add_shifted_rotational(const rigid_inertia& o, const Vec3<T>& p) {
+    const Vec3<T> mp = o.m * p;
+    I += o.I - (mp + o.h) * p.transpose() - p * o.h.transpose();
+    I.diagonal().array() += mp.dot(p) + T(2) * p.dot(o.h);
   }
 };
 

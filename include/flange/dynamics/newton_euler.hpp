@@ -11,7 +11,6 @@
 #pragma once
 #include <array>
 
-#include <Eigen/Cholesky>
 
 #include "flange/dynamics/model.hpp"
 #include "flange/dynamics/tree_walk.hpp"
@@ -20,17 +19,28 @@ namespace flange {
 
 namespace detail {
 
+/// The model's double-precision constants seen as T: a reference for double,
+/// a converted copy otherwise.
+template <class T, class M>
+decltype(auto) as_scalar(const M& m) {
+  if constexpr (std::is_same_v<typename M::Scalar, T>) return (m);
+  else return m.template cast<T>().eval();
+}
+
+/// Per-link workspace. Left uninitialised on purpose: each field is written
+/// exactly when link_flags say it is used, and never read otherwise.
 template <class T>
 struct ne_link {
-  Vec3<T> w = Vec3<T>::Zero(), wd = Vec3<T>::Zero(), a = Vec3<T>::Zero();
-  Vec3<T> f = Vec3<T>::Zero(), n = Vec3<T>::Zero();
-  Vec3<T> p = Vec3<T>::Zero();  // child origin from parent origin, parent coordinates
+  Vec3<T> w, wd, a;  // ω, ω̇ and the origin's acceleration (with −g), link coordinates
+  Vec3<T> f, n;      // link force and torque about the origin
+  Vec3<T> p;         // child origin from parent origin, parent coordinates
 };
 
 template <class S, class T, class X>
 void newton_euler_bias(const S& scene, const T* qd, const X& xf, const std::array<Vec3<T>, S::tree.n_links>& n_ext,
                        std::array<ne_link<T>, S::tree.n_links>& lk, T* b) {
   constexpr bool gravity = S::has_gravity;
+  constexpr auto F = link_flags<S>::value;
   Vec3<T> minus_g = Vec3<T>::Zero();
   if constexpr (gravity) minus_g = -scene.gravity().template cast<T>();
   const auto& model = scene.model();
@@ -38,38 +48,48 @@ void newton_euler_bias(const S& scene, const T* qd, const X& xf, const std::arra
     constexpr int L = decltype(l)::value;
     using LI = link_info<S, L>;
     using XF = typename LI::template transform<T>;
+    constexpr int P = LI::parent;
     const auto& x = std::get<L - 1>(xf);
     const T qdl = qd[LI::q];
     auto& c = lk[L];
+    const auto& pl = lk[P];
     if constexpr (LI::has_offset) c.p = model.set_offset[LI::parent_set].template cast<T>() + x.p();
     else c.p = x.p();
-    if constexpr (LI::parent == 0) {
-      // The world link neither turns nor accelerates (but for −g).
-      if constexpr (XF::rotates) {
-        c.w = x.axis(qdl);
-        if constexpr (gravity) c.a = x.rot(minus_g);
-      } else {
-        if constexpr (gravity) c.a = minus_g;
+    // The parent origin's acceleration carried to this link's origin.
+    Vec3<T> ap = P == 0 ? minus_g : pl.a;
+    if constexpr (!F.p_zero[L]) {
+      if constexpr (!F.wd_zero[P]) ap += pl.wd.cross(c.p);
+      if constexpr (!F.w_zero[P]) ap += pl.w.cross(pl.w.cross(c.p));
+    }
+    if constexpr (XF::rotates) {
+      c.w = F.w_zero[P] ? x.axis(qdl) : Vec3<T>(x.rot(pl.w) + x.axis(qdl));
+      if constexpr (!F.wd_zero[L]) {
+        c.wd = x.cross_axis(c.w, qdl);
+        if constexpr (!F.wd_zero[P]) c.wd += x.rot(pl.wd);
       }
+      c.a = x.rot(ap);
     } else {
-      const auto& P = lk[LI::parent];
-      Vec3<T> ap = P.a;
-      if constexpr (LI::has_offset || XF::translates) ap += P.wd.cross(c.p) + P.w.cross(P.w.cross(c.p));
-      if constexpr (XF::rotates) {
-        c.w = x.rot(P.w) + x.axis(qdl);
-        c.wd = x.rot(P.wd) + x.cross_axis(c.w, qdl);
-        c.a = x.rot(ap);
-      } else {
-        c.w = P.w;
-        c.wd = P.wd;
-        c.a = ap + T(2) * c.w.cross(x.axis(qdl));
-      }
+      if constexpr (!F.w_zero[L]) c.w = pl.w;
+      if constexpr (!F.wd_zero[L]) c.wd = pl.wd;
+      c.a = ap;
+      if constexpr (!F.w_zero[L]) c.a += T(2) * c.w.cross(x.axis(qdl));
     }
     const auto& I = model.link[L];
-    const Vec3<T> h = I.h.template cast<T>();
-    const Mat3<T> Io = I.I.template cast<T>();
-    c.f = T(I.m) * c.a + c.wd.cross(h) + c.w.cross(c.w.cross(h));
-    c.n = Io * c.wd + c.w.cross(Io * c.w) + h.cross(c.a) - n_ext[L];
+    decltype(auto) h = as_scalar<T>(I.h);
+    // Link force f (needed by a prismatic joint and by the parent) and torque n
+    // about the origin: f = m·a + ω̇ × h + ω × (ω × h), n = I·ω̇ + ω × I·ω + h × a.
+    if constexpr (F.need_f[L]) {
+      c.f = T(I.m) * c.a;
+      if constexpr (!F.wd_zero[L]) c.f += c.wd.cross(h);
+      if constexpr (!F.w_zero[L]) c.f += c.w.cross(c.w.cross(h));
+    }
+    c.n = h.cross(c.a);
+    if constexpr (!F.w_zero[L] || !F.wd_zero[L]) {
+      decltype(auto) Io = as_scalar<T>(I.I);
+      if constexpr (!F.wd_zero[L]) c.n += Io * c.wd;
+      if constexpr (!F.w_zero[L]) c.n += c.w.cross(Io * c.w);
+    }
+    if constexpr (F.has_ext[L]) c.n -= n_ext[L];
   });
   for_links_reverse<S>([&](auto l) {
     constexpr int L = decltype(l)::value;
@@ -77,17 +97,20 @@ void newton_euler_bias(const S& scene, const T* qd, const X& xf, const std::arra
     using XF = typename LI::template transform<T>;
     const auto& x = std::get<L - 1>(xf);
     auto& c = lk[L];
-    b[LI::q] = XF::rotates ? x.axis_dot(c.n) : x.axis_dot(c.f);
+    if constexpr (XF::rotates) b[LI::q] = x.axis_dot(c.n);
+    else b[LI::q] = x.axis_dot(c.f);
     if constexpr (LI::parent != 0) {
       auto& P = lk[LI::parent];
       const Vec3<T> fp = x.rot_t(c.f);
-      P.f += fp;
-      P.n += x.rot_t(c.n) + c.p.cross(fp);
+      if constexpr (F.need_f[LI::parent]) P.f += fp;
+      P.n += x.rot_t(c.n);
+      if constexpr (!F.p_zero[L]) P.n += c.p.cross(fp);
     }
   });
 }
 
-/// Column L of the mass matrix from the composite inertia of link L's subtree.
+/// Column L of the mass matrix: the composite force F = Ic·S of link L's
+/// subtree, carried up through the ancestors J and projected on their axes.
 template <class S, int L, int J, class T, class X, class MM>
 void crba_column(const X& xf, const std::array<ne_link<T>, S::tree.n_links>& lk, const Vec3<T>& n, const Vec3<T>& f,
                  MM& M) {
@@ -96,41 +119,56 @@ void crba_column(const X& xf, const std::array<ne_link<T>, S::tree.n_links>& lk,
   if constexpr (P != 0) {
     const auto& x = std::get<J - 1>(xf);
     const Vec3<T> fp = x.rot_t(f);
-    const Vec3<T> np = x.rot_t(n) + lk[J].p.cross(fp);
+    Vec3<T> np = x.rot_t(n);
+    if constexpr (!link_flags<S>::value.p_zero[J]) np += lk[J].p.cross(fp);
     using LP = link_info<S, P>;
     using XP = typename LP::template transform<T>;
     const auto& xp = std::get<P - 1>(xf);
-    const T v = XP::rotates ? xp.axis_dot(np) : xp.axis_dot(fp);
+    T v;
+    if constexpr (XP::rotates) v = xp.axis_dot(np);
+    else v = xp.axis_dot(fp);
     M(LP::q, link_info<S, L>::q) = v;
     M(link_info<S, L>::q, LP::q) = v;
     crba_column<S, L, P>(xf, lk, np, fp, M);
   }
 }
 
+/// E'·I·E for a symmetric I, with E applied column by column (2-D rotations
+/// for a compile-time axis).
+template <class T, class XF>
+Mat3<T> rotate_back(const XF& x, const Mat3<T>& I) {
+  Mat3<T> A;
+  for (int k = 0; k < 3; ++k) A.col(k) = x.rot_t(I.col(k));  // A = E'·I
+  Mat3<T> B;
+  for (int k = 0; k < 3; ++k) B.col(k) = x.rot_t(A.row(k).transpose());  // B = E'·A' = (A·E)'
+  return B.transpose();
+}
+
 template <class S, class T, class X, class MM>
 void composite_rigid_body(const S& scene, const X& xf, const std::array<ne_link<T>, S::tree.n_links>& lk, MM& M) {
   constexpr int NL = S::tree.n_links;
+  constexpr auto F = link_flags<S>::value;
   std::array<rigid_inertia<T>, NL> ic;
-  for (int L = 1; L < NL; ++L) {
+  for_links<S>([&](auto l) {
+    constexpr int L = decltype(l)::value;
     const auto& I = scene.model().link[L];
     ic[L].m = T(I.m);
     ic[L].h = I.h.template cast<T>();
-    ic[L].I = I.I.template cast<T>();
-  }
+    if constexpr (F.need_I[L]) ic[L].I = I.I.template cast<T>();
+  });
   for_links_reverse<S>([&](auto l) {
     constexpr int L = decltype(l)::value;
     using LI = link_info<S, L>;
     using XF = typename LI::template transform<T>;
     const auto& x = std::get<L - 1>(xf);
     const auto& c = ic[L];
+    const Vec3<T> s = x.axis(T(1));
     Vec3<T> n, f;
     if constexpr (XF::rotates) {
-      const Vec3<T> s = x.axis(T(1));
       n = c.I * s;
       f = s.cross(c.h);
       M(LI::q, LI::q) = x.axis_dot(n);
     } else {
-      const Vec3<T> s = x.axis(T(1));
       n = c.h.cross(s);
       f = c.m * s;
       M(LI::q, LI::q) = c.m;
@@ -139,17 +177,50 @@ void composite_rigid_body(const S& scene, const X& xf, const std::array<ne_link<
     if constexpr (LI::parent != 0) {
       rigid_inertia<T> r;
       r.m = c.m;
-      if constexpr (XF::rotates) {
-        const Mat3<T> E = x.matrix();
-        r.h = E.transpose() * c.h;
-        r.I = E.transpose() * c.I * E;
+      r.h = x.rot_t(c.h);
+      auto& pc = ic[LI::parent];
+      if constexpr (F.p_zero[L]) {
+        pc.m += r.m;
+        pc.h += r.h;
       } else {
-        r.h = c.h;
-        r.I = c.I;
+        pc.add_shifted_mass(r, lk[L].p);
       }
-      ic[LI::parent].add_shifted(r, lk[L].p);
+      if constexpr (F.need_I[LI::parent]) {
+        r.I = XF::rotates ? rotate_back<T>(x, c.I) : c.I;
+        if constexpr (F.p_zero[L]) pc.I += r.I;
+        else pc.add_shifted_rotational(r, lk[L].p);
+      }
     }
   });
+}
+
+/// Solves M·a = r for a symmetric positive-definite M by an unrolled LDLᵀ
+/// factorisation (no square roots). Returns false if a pivot is not positive.
+template <int N, class T, class MM>
+bool solve_spd(MM& M, const T* r, T* a) {
+  std::array<T, N> inv_d;
+  for (int j = 0; j < N; ++j) {
+    T d = M(j, j);
+    for (int k = 0; k < j; ++k) d -= M(j, k) * M(j, k) / inv_d[k];
+    if (!(d > T(0))) return false;
+    inv_d[j] = T(1) / d;
+    for (int i = j + 1; i < N; ++i) {
+      T v = M(i, j);
+      for (int k = 0; k < j; ++k) v -= M(i, k) * M(j, k) / inv_d[k];
+      M(i, j) = v * inv_d[j];  // L(i, j), stored below the diagonal
+    }
+  }
+  for (int i = 0; i < N; ++i) {
+    T v = r[i];
+    for (int k = 0; k < i; ++k) v -= M(i, k) * a[k];
+    a[i] = v;
+  }
+  for (int i = N - 1; i >= 0; --i) {
+    T v = a[i] * inv_d[i];
+    for (int k = i + 1; k < N; ++k) v -= M(k, i) * a[k];
+    a[i] = v;
+  }
+  return true;
 }
 
 /// Generalised joint forces from joint inputs (a Prismatic's f).
@@ -164,6 +235,15 @@ void joint_inputs(const S& scene, const T& t, const joint_state<T>& x, T* tau) {
 
 }  // namespace detail
 
+namespace detail {
+template <class T>
+[[noreturn, gnu::cold, gnu::noinline]] void singular_mass_matrix(const T& t, const T* q, const T* qd, int n) {
+  throw simulation_error(concat("flange: singular mass matrix at t = ", static_cast<double>(t), ", ",
+                                describe_state(q, qd, n), "; some joint moves nothing with mass or inertia"),
+                         static_cast<double>(t));
+}
+}  // namespace detail
+
 /// q̈ = M⁻¹·(τ − b) at (t, q, q̇). Throws simulation_error if M is singular.
 template <class S, class T>
 void accelerations_newton_euler(const S& scene, const T& t, const T* q, const T* qd, T* qdd) {
@@ -171,7 +251,6 @@ void accelerations_newton_euler(const S& scene, const T& t, const T* q, const T*
   const auto xf = detail::joint_transforms(scene, q);
   const joint_state<T> x{q, qd, N};
   std::array<Vec3<T>, NL> n_ext;
-  n_ext.fill(Vec3<T>::Zero());
   detail::gather_external(scene, t, x, xf, n_ext);
   std::array<detail::ne_link<T>, NL> lk;
   std::array<T, N> b, tau;
@@ -179,26 +258,10 @@ void accelerations_newton_euler(const S& scene, const T& t, const T* q, const T*
   detail::joint_inputs(scene, t, x, tau.data());
   Eigen::Matrix<T, N, N> M;
   detail::composite_rigid_body(scene, xf, lk, M);
-  using std::isfinite;
-  if constexpr (N == 1) {
-    if (!(M(0, 0) > T(0)) || !isfinite(static_cast<double>(M(0, 0))))
-      throw simulation_error(detail::concat("flange: singular mass matrix (M = ", static_cast<double>(M(0, 0)),
-                                            ") at t = ", static_cast<double>(t), ", ", detail::describe_state(q, qd, N),
-                                            "; a joint moves nothing with mass or inertia"),
-                             static_cast<double>(t));
-    qdd[0] = (tau[0] - b[0]) / M(0, 0);
-  } else {
-    const Eigen::LLT<Eigen::Matrix<T, N, N>> llt(M);
-    if (llt.info() != Eigen::Success)
-      throw simulation_error(detail::concat("flange: singular mass matrix at t = ", static_cast<double>(t), ", ",
-                                            detail::describe_state(q, qd, N),
-                                            "; some joint moves nothing with mass or inertia"),
-                             static_cast<double>(t));
-    Eigen::Matrix<T, N, 1> r;
-    for (int i = 0; i < N; ++i) r(i) = tau[i] - b[i];
-    const Eigen::Matrix<T, N, 1> a = llt.solve(r);
-    for (int i = 0; i < N; ++i) qdd[i] = a(i);
-  }
+  std::array<T, N> r;
+  for (int i = 0; i < N; ++i) r[i] = tau[i] - b[i];
+  if (!detail::solve_spd<N>(M, r.data(), qdd)) [[unlikely]]
+    detail::singular_mass_matrix(t, q, qd, N);
 }
 
 /// The mass matrix M(q) (for tests and users who want it).

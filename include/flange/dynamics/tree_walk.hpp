@@ -25,6 +25,53 @@ struct link_info {
   using transform = joint_transform<joint_type, (dir > 0 ? 1 : -1), T>;
 };
 
+/// What is known about each link before any number is seen: which quantities
+/// are identically zero in the bias pass (q̈ = 0), and which the mass matrix
+/// needs. The recursive algorithms skip what these flags rule out, so a link
+/// behind a prismatic joint on the World does no angular arithmetic at all.
+template <class S>
+struct link_flags {
+  static constexpr int NL = S::tree.n_links;
+  struct table {
+    std::array<bool, NL> w_zero{};    ///< ω ≡ 0: no revolute joint on the path to the World
+    std::array<bool, NL> wd_zero{};   ///< ω̇ ≡ 0 when q̈ = 0
+    std::array<bool, NL> p_zero{};    ///< the link origin coincides with its joint's parent-side frame… and that frame with the parent origin
+    std::array<bool, NL> need_I{};    ///< the mass matrix needs the composite rotational inertia
+    std::array<bool, NL> has_ext{};   ///< a force element acts on the link
+    std::array<bool, NL> need_f{};    ///< the link force f is used (prismatic joint, or passed to a parent)
+  };
+  static constexpr table value = [] {
+    table t{};
+    t.w_zero[0] = t.wd_zero[0] = true;
+    [&]<int... L>(std::integer_sequence<int, L...>) {
+      (
+          [&] {
+            using LI = link_info<S, L + 1>;
+            constexpr bool rev = LI::joint_type::type == joint_type::revolute;
+            constexpr int P = LI::parent;
+            t.w_zero[L + 1] = t.w_zero[P] && !rev;
+            t.wd_zero[L + 1] = rev ? (t.w_zero[P] && t.wd_zero[P]) : t.wd_zero[P];
+            t.p_zero[L + 1] = rev && !LI::has_offset;
+            t.need_I[L + 1] = rev || t.need_I[P];
+            t.need_f[L + 1] = !rev || P != 0;
+          }(),
+          ...);
+    }(std::make_integer_sequence<int, NL - 1>{});
+    [&]<int... C>(std::integer_sequence<int, C...>) {
+      (
+          [&] {
+            if constexpr (S::template component_type<C>::kind == role::force) {
+              const int la = S::tree.set_link[S::topology.set_of[S::table.frame_base[C]]];
+              const int lb = S::tree.set_link[S::topology.set_of[S::table.frame_base[C] + 1]];
+              if (la != lb) t.has_ext[la] = t.has_ext[lb] = true;
+            }
+          }(),
+          ...);
+    }(std::make_integer_sequence<int, S::n_components>{});
+    return t;
+  }();
+};
+
 /// f(integral_constant<L>) for L = 1 … n_links−1, parents first.
 template <class S, class F>
 void for_links(F&& f) {
@@ -62,10 +109,12 @@ Vec3<T> link_to_world(const X& xf, const Vec3<T>& v) {
   else return link_to_world<link_info<S, L>::parent, S>(xf, std::get<L - 1>(xf).rot_t(v));
 }
 
-/// Adds the wrenches of the scene's force elements, in link coordinates about
-/// the link origin, to n_ext/f_ext.
+/// The torques of the scene's force elements on each link, in link
+/// coordinates; only the links some element acts on (link_flags::has_ext) are written.
 template <class S, class T, class X, class NL>
 void gather_external(const S& scene, const T& t, const joint_state<T>& x, const X& xf, NL& n_ext) {
+  for (int L = 0; L < S::tree.n_links; ++L)
+    if (link_flags<S>::value.has_ext[L]) n_ext[L].setZero();
   [&]<int... C>(std::integer_sequence<int, C...>) {
     (
         [&] {

@@ -1,0 +1,37 @@
+// The paper's hand-derived equations of motion as Odeint systems: the
+// references every generated derivative is measured against.
+#pragma once
+#include <array>
+#include <cmath>
+
+#include <flange/models/paper.hpp>
+
+namespace flange::bench {
+
+/// (J_z + m d²)·θ̈ + m·d·g·sin θ = M_z, with x = (θ, θ̇).
+struct handwritten_arm {
+  models::robot_arm_params p;
+  double Mz;
+  template <class State>
+  void operator()(const State& x, State& dx, double) const {
+    dx[0] = x[1];
+    dx[1] = (Mz - p.m * p.d * p.g * std::sin(x[0])) / (p.Jz + p.m * p.d * p.d);
+  }
+};
+
+/// The crane's standard form, with x = (s, θ, ṡ, θ̇).
+struct handwritten_crane {
+  models::gantry_crane_params p;
+  double f;
+  template <class State>
+  void operator()(const State& x, State& dx, double) const {
+    const double s = std::sin(x[1]), c = std::cos(x[1]), w2 = x[3] * x[3];
+    const double den = p.M + p.m * s * s;
+    dx[0] = x[2];
+    dx[1] = x[3];
+    dx[2] = (f + (p.g * c + p.d * w2) * p.m * s) / den;
+    dx[3] = -(f * c + p.M * p.g * s + (p.g + p.d * w2 * c) * p.m * s) / (p.d * den);
+  }
+};
+
+}  // namespace flange::bench

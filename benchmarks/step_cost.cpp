@@ -1,0 +1,163 @@
+// Per-step cost: the generated derivative against the paper's hand-written
+// closed form, compiled in the same binary, for the robot arm and the gantry
+// crane; one runge_kutta4 step with a std::array state (range_algebra) and an
+// Eigen state (vector_space_algebra); and the two algorithms (Newton–Euler +
+// mass matrix, the default, against articulated-body) on chains.
+//
+// After Google Benchmark's table it prints one line per comparison,
+//   ratio <scene> <what> generated/handwritten = <x.xx>
+// from the medians of the repetitions, and the compile time of each example
+// translation unit (measured at build time, see compile_time.cmake).
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <random>
+#include <string>
+
+#include <benchmark/benchmark.h>
+#include <flange/flange.hpp>
+
+#include "handwritten.hpp"
+
+using namespace flange;
+
+namespace {
+
+const models::robot_arm_params arm_p{};
+const models::gantry_crane_params crane_p{};
+const auto arm = models::robot_arm(arm_p, Vec3d(0, 0, 0.3));
+const auto crane = models::gantry_crane(crane_p, 0.7);
+const bench::handwritten_arm arm_hw{arm_p, 0.3};
+const bench::handwritten_crane crane_hw{crane_p, 0.7};
+
+template <class System, std::size_t N>
+void derivative(benchmark::State& st, const System& sys, std::array<double, N> x) {
+  std::array<double, N> dx;
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(x);
+    sys(x, dx, 0.0);
+    benchmark::DoNotOptimize(dx);
+  }
+}
+
+template <class State, class Stepper, class System>
+void rk4_steps(benchmark::State& st, const System& sys, State x) {
+  Stepper stepper;
+  for (auto _ : st) {
+    stepper.do_step(sys, x, 0.0, 1e-4);  // small steps: the state stays near its start
+    benchmark::DoNotOptimize(x);
+  }
+}
+
+template <int N, template <int> class Axes, bool ABA>
+void chain_derivative(benchmark::State& st) {
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(0.2, 1.0), s(-1, 1);
+  models::chain_params<N> p;
+  for (int i = 0; i < N; ++i) {
+    p.axis[i] = Vec3d(s(rng), s(rng), 1).normalized();
+    p.d[i] = Vec3d(u(rng), 0.1 * s(rng), 0.1 * s(rng));
+    p.m[i] = u(rng);
+    p.J[i] = Vec3d(0.05, 0.06, 0.07).asDiagonal();
+  }
+  const auto c = models::chain<N, Axes>(p);
+  std::array<double, 2 * N> x, dx;
+  for (auto& v : x) v = s(rng);
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(x);
+    if constexpr (ABA) {
+      for (int i = 0; i < N; ++i) dx[i] = x[N + i];
+      accelerations_articulated_body(c, 0.0, x.data(), x.data() + N, dx.data() + N);
+    } else {
+      c(x, dx, 0.0);
+    }
+    benchmark::DoNotOptimize(dx);
+  }
+}
+
+using A2 = std::array<double, 2>;
+using A4 = std::array<double, 4>;
+using E2 = Eigen::Matrix<double, 2, 1>;
+using E4 = Eigen::Matrix<double, 4, 1>;
+template <class S>
+using rk4_array = odeint::runge_kutta4<S>;
+template <class S>
+using rk4_eigen = odeint::runge_kutta4<S, double, S, double, odeint::vector_space_algebra>;
+
+const A2 arm_x{0.3, 0.7};
+const A4 crane_x{0.2, 0.4, 0.3, -0.5};
+
+void register_all() {
+  auto reg = [](const char* name, auto fn) {
+    benchmark::RegisterBenchmark(name, fn)->Repetitions(7)->ReportAggregatesOnly(true)->MinTime(0.05);
+  };
+  reg("robot_arm/derivative/generated", [](benchmark::State& s) { derivative(s, arm, arm_x); });
+  reg("robot_arm/derivative/handwritten", [](benchmark::State& s) { derivative(s, arm_hw, arm_x); });
+  reg("robot_arm/rk4_step_array/generated", [](benchmark::State& s) { rk4_steps<A2, rk4_array<A2>>(s, arm, arm_x); });
+  reg("robot_arm/rk4_step_array/handwritten",
+      [](benchmark::State& s) { rk4_steps<A2, rk4_array<A2>>(s, arm_hw, arm_x); });
+  reg("robot_arm/rk4_step_eigen/generated",
+      [](benchmark::State& s) { rk4_steps<E2, rk4_eigen<E2>>(s, arm, E2(arm_x[0], arm_x[1])); });
+  reg("robot_arm/rk4_step_eigen/handwritten",
+      [](benchmark::State& s) { rk4_steps<E2, rk4_eigen<E2>>(s, arm_hw, E2(arm_x[0], arm_x[1])); });
+  reg("gantry_crane/derivative/generated", [](benchmark::State& s) { derivative(s, crane, crane_x); });
+  reg("gantry_crane/derivative/handwritten", [](benchmark::State& s) { derivative(s, crane_hw, crane_x); });
+  reg("gantry_crane/rk4_step_array/generated",
+      [](benchmark::State& s) { rk4_steps<A4, rk4_array<A4>>(s, crane, crane_x); });
+  reg("gantry_crane/rk4_step_array/handwritten",
+      [](benchmark::State& s) { rk4_steps<A4, rk4_array<A4>>(s, crane_hw, crane_x); });
+  reg("gantry_crane/rk4_step_eigen/generated", [](benchmark::State& s) {
+    rk4_steps<E4, rk4_eigen<E4>>(s, crane, E4(crane_x[0], crane_x[1], crane_x[2], crane_x[3]));
+  });
+  reg("gantry_crane/rk4_step_eigen/handwritten", [](benchmark::State& s) {
+    rk4_steps<E4, rk4_eigen<E4>>(s, crane_hw, E4(crane_x[0], crane_x[1], crane_x[2], crane_x[3]));
+  });
+  reg("chain2_planar/derivative/newton_euler", chain_derivative<2, models::planar_axes, false>);
+  reg("chain2_planar/derivative/articulated_body", chain_derivative<2, models::planar_axes, true>);
+  reg("chain4_spatial/derivative/newton_euler", chain_derivative<4, models::runtime_axes, false>);
+  reg("chain4_spatial/derivative/articulated_body", chain_derivative<4, models::runtime_axes, true>);
+  reg("chain8_spatial/derivative/newton_euler", chain_derivative<8, models::runtime_axes, false>);
+  reg("chain8_spatial/derivative/articulated_body", chain_derivative<8, models::runtime_axes, true>);
+}
+
+/// Keeps the median of each benchmark's repetitions.
+struct median_reporter : benchmark::ConsoleReporter {
+  std::map<std::string, double> ns;
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const auto& r : runs)
+      if (r.run_type == Run::RT_Aggregate && r.aggregate_name == "median")
+        ns[r.run_name.function_name] = r.GetAdjustedRealTime();  // ns per iteration
+    ConsoleReporter::ReportRuns(runs);
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  register_all();
+  benchmark::Initialize(&argc, argv);
+  median_reporter rep;
+  benchmark::RunSpecifiedBenchmarks(&rep);
+  auto ratio = [&](const std::string& scene, const std::string& what, const std::string& a, const std::string& b) {
+    const auto x = rep.ns.find(scene + "/" + what + "/" + a), y = rep.ns.find(scene + "/" + what + "/" + b);
+    if (x == rep.ns.end() || y == rep.ns.end()) return;
+    std::printf("ratio %s %s %s/%s = %.2f   (%.1f ns vs %.1f ns, medians)\n", scene.c_str(), what.c_str(), a.c_str(),
+                b.c_str(), x->second / y->second, x->second, y->second);
+  };
+  std::printf("\n");
+  for (const char* scene : {"robot_arm", "gantry_crane"})
+    for (const char* what : {"derivative", "rk4_step_array", "rk4_step_eigen"})
+      ratio(scene, what, "generated", "handwritten");
+  for (const char* scene : {"chain2_planar", "chain4_spatial", "chain8_spatial"})
+    ratio(scene, "derivative", "newton_euler", "articulated_body");
+#ifdef FLANGE_COMPILE_TIMES
+  std::ifstream ct(FLANGE_COMPILE_TIMES);
+  std::string line;
+  std::getline(ct, line);  // header
+  while (std::getline(ct, line)) {
+    const auto comma = line.find(',');
+    std::printf("compile %s %s s\n", line.substr(0, comma).c_str(), line.substr(comma + 1).c_str());
+  }
+#endif
+  return 0;
+}
