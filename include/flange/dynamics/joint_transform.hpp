@@ -15,6 +15,7 @@
 
 #include "flange/joints/prismatic.hpp"
 #include "flange/joints/revolute.hpp"
+#include "flange/math/axial.hpp"
 #include "flange/math/rotation.hpp"
 
 namespace flange::detail {
@@ -54,6 +55,8 @@ struct joint_transform<J, Dir, T, true, true> {
     return r;
   }
   [[nodiscard]] T axis_dot(const Vec3<T>& v) const { return Dir * v(i); }
+  /// The signed unit axis σ·n, axial: multiplications by its zeros are skipped.
+  [[nodiscard]] axial<T, i> unit() const { return {T(Dir)}; }
   /// ω × (σ·n·x) without the multiplications by zero.
   [[nodiscard]] Vec3<T> cross_axis(const Vec3<T>& w, const T& x) const {
     Vec3<T> r;
@@ -85,6 +88,7 @@ struct joint_transform<J, Dir, T, true, false> {
   [[nodiscard]] Vec3<T> rot_t(const Vec3<T>& v) const { return E.transpose() * v; }
   [[nodiscard]] Vec3<T> axis(const T& x) const { return n * x; }
   [[nodiscard]] T axis_dot(const Vec3<T>& v) const { return n.dot(v); }
+  [[nodiscard]] const Vec3<T>& unit() const { return n; }
   [[nodiscard]] Vec3<T> cross_axis(const Vec3<T>& w, const T& x) const { return w.cross(n * x); }
   [[nodiscard]] const Mat3<T>& matrix() const { return E; }
   [[nodiscard]] Vec3<T> p() const { return Vec3<T>::Zero(); }
@@ -101,6 +105,7 @@ struct joint_transform<J, Dir, T, false, Fixed> {
   [[nodiscard]] Vec3<T> rot_t(const Vec3<T>& v) const { return v; }
   [[nodiscard]] Vec3<T> axis(const T& x) const { return n * x; }
   [[nodiscard]] T axis_dot(const Vec3<T>& v) const { return n.dot(v); }
+  [[nodiscard]] const Vec3<T>& unit() const { return n; }
   [[nodiscard]] Vec3<T> cross_axis(const Vec3<T>& w, const T& x) const { return w.cross(n * x); }
   [[nodiscard]] Mat3<T> matrix() const { return Mat3<T>::Identity(); }
   [[nodiscard]] Vec3<T> p() const { return n * q; }

@@ -14,6 +14,7 @@
 
 #include "flange/dynamics/model.hpp"
 #include "flange/dynamics/tree_walk.hpp"
+#include "flange/math/axial.hpp"
 
 namespace flange {
 
@@ -27,18 +28,33 @@ decltype(auto) as_scalar(const M& m) {
   else return m.template cast<T>().eval();
 }
 
-/// Per-link workspace. Left uninitialised on purpose: each field is written
-/// exactly when link_flags say it is used, and never read otherwise.
-template <class T>
+template <class T, int Axis>
+using vector_kind = std::conditional_t<(Axis < 0), Vec3<T>, axial<T, (Axis < 0 ? 0 : Axis)>>;
+
+/// Per-link workspace of link L. Left uninitialised on purpose: each field is
+/// written exactly when link_flags say it is used, and never read otherwise.
+/// ω and ω̇ are axial where the flags know their direction.
+template <class S, class T, int L>
 struct ne_link {
-  Vec3<T> w, wd, a;  // ω, ω̇ and the origin's acceleration (with −g), link coordinates
-  Vec3<T> f, n;      // link force and torque about the origin
-  Vec3<T> p;         // child origin from parent origin, parent coordinates
+  vector_kind<T, link_flags<S>::value.w_axis[L]> w;    // ω, link coordinates
+  vector_kind<T, link_flags<S>::value.wd_axis[L]> wd;  // ω̇
+  Vec3<T> a;     // the origin's acceleration (with −g), link coordinates
+  Vec3<T> f, n;  // link force and torque about the origin
+  Vec3<T> p;     // child origin from parent origin, parent coordinates
 };
+
+template <class S, class T, class Seq = std::make_integer_sequence<int, S::tree.n_links>>
+struct ne_workspace;
+template <class S, class T, int... L>
+struct ne_workspace<S, T, std::integer_sequence<int, L...>> {
+  using type = std::tuple<ne_link<S, T, L>...>;
+};
+template <class S, class T>
+using ne_workspace_t = typename ne_workspace<S, T>::type;
 
 template <class S, class T, class X>
 void newton_euler_bias(const S& scene, const T* qd, const X& xf, const std::array<Vec3<T>, S::tree.n_links>& n_ext,
-                       std::array<ne_link<T>, S::tree.n_links>& lk, T* b) {
+                       ne_workspace_t<S, T>& lk, T* b) {
   constexpr bool gravity = S::has_gravity;
   constexpr auto F = link_flags<S>::value;
   Vec3<T> minus_g = Vec3<T>::Zero();
@@ -51,28 +67,44 @@ void newton_euler_bias(const S& scene, const T* qd, const X& xf, const std::arra
     constexpr int P = LI::parent;
     const auto& x = std::get<L - 1>(xf);
     const T qdl = qd[LI::q];
-    auto& c = lk[L];
-    const auto& pl = lk[P];
+    auto& c = std::get<L>(lk);
+    const auto& pl = std::get<P>(lk);
     if constexpr (LI::has_offset) c.p = model.set_offset[LI::parent_set].template cast<T>() + x.p();
     else c.p = x.p();
     // The parent origin's acceleration carried to this link's origin.
-    Vec3<T> ap = P == 0 ? minus_g : pl.a;
+    Vec3<T> ap;
+    if constexpr (P == 0) ap = minus_g;
+    else ap = pl.a;
     if constexpr (!F.p_zero[L]) {
-      if constexpr (!F.wd_zero[P]) ap += pl.wd.cross(c.p);
-      if constexpr (!F.w_zero[P]) ap += pl.w.cross(pl.w.cross(c.p));
+      if constexpr (!F.wd_zero[P]) ap += cross(pl.wd, c.p);
+      if constexpr (!F.w_zero[P]) ap += cross(pl.w, cross(pl.w, c.p));
     }
     if constexpr (XF::rotates) {
-      c.w = F.w_zero[P] ? x.axis(qdl) : Vec3<T>(x.rot(pl.w) + x.axis(qdl));
+      if constexpr (F.w_axis[L] >= 0) {
+        // ω along the joint axis: ω = ω_P + σ·q̇ along e_i.
+        c.w.x = x.axis_dot(Vec3<T>::Unit(F.w_axis[L])) * qdl;
+        if constexpr (!F.w_zero[P]) c.w.x += pl.w.x;
+      } else if constexpr (F.w_zero[P]) {
+        c.w = x.axis(qdl);
+      } else {
+        c.w = x.rot(dense(pl.w)) + x.axis(qdl);
+      }
       if constexpr (!F.wd_zero[L]) {
-        c.wd = x.cross_axis(c.w, qdl);
-        if constexpr (!F.wd_zero[P]) c.wd += x.rot(pl.wd);
+        if constexpr (F.wd_axis[L] >= 0) {
+          c.wd.x = pl.wd.x;
+        } else {
+          Vec3<T> v = Vec3<T>::Zero();
+          if constexpr (F.w_axis[L] < 0) v = x.cross_axis(c.w, qdl);
+          if constexpr (!F.wd_zero[P]) v += x.rot(dense(pl.wd));
+          c.wd = v;
+        }
       }
       c.a = x.rot(ap);
     } else {
       if constexpr (!F.w_zero[L]) c.w = pl.w;
       if constexpr (!F.wd_zero[L]) c.wd = pl.wd;
       c.a = ap;
-      if constexpr (!F.w_zero[L]) c.a += T(2) * c.w.cross(x.axis(qdl));
+      if constexpr (!F.w_zero[L]) c.a += T(2) * cross(c.w, x.axis(qdl));
     }
     const auto& I = model.link[L];
     decltype(auto) h = as_scalar<T>(I.h);
@@ -80,14 +112,14 @@ void newton_euler_bias(const S& scene, const T* qd, const X& xf, const std::arra
     // about the origin: f = m·a + ω̇ × h + ω × (ω × h), n = I·ω̇ + ω × I·ω + h × a.
     if constexpr (F.need_f[L]) {
       c.f = T(I.m) * c.a;
-      if constexpr (!F.wd_zero[L]) c.f += c.wd.cross(h);
-      if constexpr (!F.w_zero[L]) c.f += c.w.cross(c.w.cross(h));
+      if constexpr (!F.wd_zero[L]) c.f += cross(c.wd, h);
+      if constexpr (!F.w_zero[L]) c.f += cross(c.w, cross(c.w, h));
     }
     c.n = h.cross(c.a);
     if constexpr (!F.w_zero[L] || !F.wd_zero[L]) {
       decltype(auto) Io = as_scalar<T>(I.I);
-      if constexpr (!F.wd_zero[L]) c.n += Io * c.wd;
-      if constexpr (!F.w_zero[L]) c.n += c.w.cross(Io * c.w);
+      if constexpr (!F.wd_zero[L]) c.n += mul<T>(Io, c.wd);
+      if constexpr (!F.w_zero[L]) c.n += cross(c.w, mul<T>(Io, c.w));
     }
     if constexpr (F.has_ext[L]) c.n -= n_ext[L];
   });
@@ -96,11 +128,11 @@ void newton_euler_bias(const S& scene, const T* qd, const X& xf, const std::arra
     using LI = link_info<S, L>;
     using XF = typename LI::template transform<T>;
     const auto& x = std::get<L - 1>(xf);
-    auto& c = lk[L];
+    auto& c = std::get<L>(lk);
     if constexpr (XF::rotates) b[LI::q] = x.axis_dot(c.n);
     else b[LI::q] = x.axis_dot(c.f);
     if constexpr (LI::parent != 0) {
-      auto& P = lk[LI::parent];
+      auto& P = std::get<LI::parent>(lk);
       const Vec3<T> fp = x.rot_t(c.f);
       if constexpr (F.need_f[LI::parent]) P.f += fp;
       P.n += x.rot_t(c.n);
@@ -112,15 +144,14 @@ void newton_euler_bias(const S& scene, const T* qd, const X& xf, const std::arra
 /// Column L of the mass matrix: the composite force F = Ic·S of link L's
 /// subtree, carried up through the ancestors J and projected on their axes.
 template <class S, int L, int J, class T, class X, class MM>
-void crba_column(const X& xf, const std::array<ne_link<T>, S::tree.n_links>& lk, const Vec3<T>& n, const Vec3<T>& f,
-                 MM& M) {
+void crba_column(const X& xf, const ne_workspace_t<S, T>& lk, const Vec3<T>& n, const Vec3<T>& f, MM& M) {
   using LJ = link_info<S, J>;
   constexpr int P = LJ::parent;
   if constexpr (P != 0) {
     const auto& x = std::get<J - 1>(xf);
     const Vec3<T> fp = x.rot_t(f);
     Vec3<T> np = x.rot_t(n);
-    if constexpr (!link_flags<S>::value.p_zero[J]) np += lk[J].p.cross(fp);
+    if constexpr (!link_flags<S>::value.p_zero[J]) np += std::get<J>(lk).p.cross(fp);
     using LP = link_info<S, P>;
     using XP = typename LP::template transform<T>;
     const auto& xp = std::get<P - 1>(xf);
@@ -145,50 +176,63 @@ Mat3<T> rotate_back(const XF& x, const Mat3<T>& I) {
 }
 
 template <class S, class T, class X, class MM>
-void composite_rigid_body(const S& scene, const X& xf, const std::array<ne_link<T>, S::tree.n_links>& lk, MM& M) {
+void composite_rigid_body(const S& scene, const X& xf, const ne_workspace_t<S, T>& lk, MM& M) {
   constexpr int NL = S::tree.n_links;
   constexpr auto F = link_flags<S>::value;
+  // Composite inertias are accumulated only for links with children; a leaf's
+  // is its own, read from the model without a copy (when T is double).
+  constexpr auto has_children = [] {
+    std::array<bool, NL> c{};
+    for (int L = 1; L < NL; ++L) c[S::tree.link_parent[L]] = true;
+    return c;
+  }();
   std::array<rigid_inertia<T>, NL> ic;
   for_links<S>([&](auto l) {
     constexpr int L = decltype(l)::value;
-    const auto& I = scene.model().link[L];
-    ic[L].m = T(I.m);
-    ic[L].h = I.h.template cast<T>();
-    if constexpr (F.need_I[L]) ic[L].I = I.I.template cast<T>();
+    if constexpr (has_children[L] || !std::is_same_v<T, double>) {
+      const auto& I = scene.model().link[L];
+      ic[L].m = T(I.m);
+      ic[L].h = I.h.template cast<T>();
+      if constexpr (F.need_I[L]) ic[L].I = I.I.template cast<T>();
+    }
   });
   for_links_reverse<S>([&](auto l) {
     constexpr int L = decltype(l)::value;
     using LI = link_info<S, L>;
     using XF = typename LI::template transform<T>;
     const auto& x = std::get<L - 1>(xf);
-    const auto& c = ic[L];
-    const Vec3<T> s = x.axis(T(1));
+    const auto& c = [&]() -> const auto& {
+      if constexpr (has_children[L] || !std::is_same_v<T, double>) return ic[L];
+      else return scene.model().link[L];
+    }();
+    const auto s = x.unit();
     Vec3<T> n, f;
     if constexpr (XF::rotates) {
-      n = c.I * s;
-      f = s.cross(c.h);
+      n = mul<T>(c.I, s);  // F = Ic·S with S = (σn, 0): (I·σn, σn × h)
+      f = cross(s, Vec3<T>(c.h));
       M(LI::q, LI::q) = x.axis_dot(n);
     } else {
-      n = c.h.cross(s);
-      f = c.m * s;
-      M(LI::q, LI::q) = c.m;
+      n = cross(Vec3<T>(c.h), s);  // S = (0, σn): (h × σn, m·σn)
+      f = T(c.m) * dense(s);
+      M(LI::q, LI::q) = T(c.m);
     }
     crba_column<S, L, L>(xf, lk, n, f, M);
     if constexpr (LI::parent != 0) {
       rigid_inertia<T> r;
-      r.m = c.m;
-      r.h = x.rot_t(c.h);
+      r.m = T(c.m);
+      r.h = x.rot_t(Vec3<T>(c.h));
       auto& pc = ic[LI::parent];
       if constexpr (F.p_zero[L]) {
         pc.m += r.m;
         pc.h += r.h;
       } else {
-        pc.add_shifted_mass(r, lk[L].p);
+        pc.add_shifted_mass(r, std::get<L>(lk).p);
       }
       if constexpr (F.need_I[LI::parent]) {
-        r.I = XF::rotates ? rotate_back<T>(x, c.I) : c.I;
+        if constexpr (XF::rotates) r.I = rotate_back<T>(x, Mat3<T>(c.I));
+        else r.I = c.I;
         if constexpr (F.p_zero[L]) pc.I += r.I;
-        else pc.add_shifted_rotational(r, lk[L].p);
+        else pc.add_shifted_rotational(r, std::get<L>(lk).p);
       }
     }
   });
@@ -252,12 +296,12 @@ void accelerations_newton_euler(const S& scene, const T& t, const T* q, const T*
   const joint_state<T> x{q, qd, N};
   std::array<Vec3<T>, NL> n_ext;
   detail::gather_external(scene, t, x, xf, n_ext);
-  std::array<detail::ne_link<T>, NL> lk;
+  detail::ne_workspace_t<S, T> lk;
   std::array<T, N> b, tau;
   detail::newton_euler_bias(scene, qd, xf, n_ext, lk, b.data());
   detail::joint_inputs(scene, t, x, tau.data());
   Eigen::Matrix<T, N, N> M;
-  detail::composite_rigid_body(scene, xf, lk, M);
+  detail::composite_rigid_body<S, T>(scene, xf, lk, M);
   std::array<T, N> r;
   for (int i = 0; i < N; ++i) r[i] = tau[i] - b[i];
   if (!detail::solve_spd<N>(M, r.data(), qdd)) [[unlikely]]
@@ -272,11 +316,11 @@ Eigen::Matrix<T, S::n_q, S::n_q> mass_matrix(const S& scene, const T* q) {
   std::array<T, S::n_q> qd{};
   std::array<Vec3<T>, NL> n_ext;
   n_ext.fill(Vec3<T>::Zero());
-  std::array<detail::ne_link<T>, NL> lk;
+  detail::ne_workspace_t<S, T> lk;
   std::array<T, S::n_q> b;
   detail::newton_euler_bias(scene, qd.data(), xf, n_ext, lk, b.data());
   Eigen::Matrix<T, S::n_q, S::n_q> M;
-  detail::composite_rigid_body(scene, xf, lk, M);
+  detail::composite_rigid_body<S, T>(scene, xf, lk, M);
   return M;
 }
 

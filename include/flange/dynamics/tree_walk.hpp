@@ -39,18 +39,37 @@ struct link_flags {
     std::array<bool, NL> need_I{};    ///< the mass matrix needs the composite rotational inertia
     std::array<bool, NL> has_ext{};   ///< a force element acts on the link
     std::array<bool, NL> need_f{};    ///< the link force f is used (prismatic joint, or passed to a parent)
+    std::array<int, NL> w_axis{};     ///< ω is axial along this coordinate axis (−1: dense)
+    std::array<int, NL> wd_axis{};    ///< ω̇ (q̈ = 0) is axial along this coordinate axis (−1: dense)
   };
   static constexpr table value = [] {
     table t{};
     t.w_zero[0] = t.wd_zero[0] = true;
+    t.w_axis[0] = t.wd_axis[0] = -1;
     [&]<int... L>(std::integer_sequence<int, L...>) {
       (
           [&] {
             using LI = link_info<S, L + 1>;
-            constexpr bool rev = LI::joint_type::type == joint_type::revolute;
+            using J = typename LI::joint_type;
+            constexpr bool rev = J::type == joint_type::revolute;
             constexpr int P = LI::parent;
+            constexpr int axis = [] {
+              if constexpr (J::axis_type::fixed) return J::axis_type::index;
+              else return -1;
+            }();
             t.w_zero[L + 1] = t.w_zero[P] && !rev;
-            t.wd_zero[L + 1] = rev ? (t.w_zero[P] && t.wd_zero[P]) : t.wd_zero[P];
+            if (rev) {
+              // ω = E·ω_P + n·q̇ stays along e_i when ω_P does; then ω × n = 0
+              // and ω̇ = E·ω̇_P (q̈ = 0).
+              const bool parallel = axis >= 0 && (t.w_zero[P] || t.w_axis[P] == axis);
+              t.w_axis[L + 1] = parallel ? axis : -1;
+              t.wd_zero[L + 1] = t.wd_zero[P] && (t.w_zero[P] || parallel);
+              t.wd_axis[L + 1] = parallel && t.wd_axis[P] == axis ? axis : -1;
+            } else {
+              t.w_axis[L + 1] = t.w_axis[P];
+              t.wd_zero[L + 1] = t.wd_zero[P];
+              t.wd_axis[L + 1] = t.wd_axis[P];
+            }
             t.p_zero[L + 1] = rev && !LI::has_offset;
             t.need_I[L + 1] = rev || t.need_I[P];
             t.need_f[L + 1] = !rev || P != 0;
