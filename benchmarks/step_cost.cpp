@@ -49,6 +49,28 @@ void rk4_steps(benchmark::State& st, const System& sys, State x) {
   }
 }
 
+/// One evaluation of the full DAE residual F(t, y, ẏ) on a consistent point.
+template <class Scene, std::size_t N>
+void residual_eval(benchmark::State& st, const Scene& sc, std::array<double, N> x) {
+  const auto sol = recover(sc, 0.0, x);
+  auto y = sol.y;
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(y);
+    auto r = residual(sc, 0.0, y, sol.yd);
+    benchmark::DoNotOptimize(r);
+  }
+}
+
+/// Recovering every DAE variable (poses, velocities, cut forces, energy) from (t, x).
+template <class Scene, std::size_t N>
+void recover_all(benchmark::State& st, const Scene& sc, std::array<double, N> x) {
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(x);
+    auto sol = recover(sc, 0.0, x);
+    benchmark::DoNotOptimize(sol);
+  }
+}
+
 template <int N, template <int> class Axes, bool ABA>
 void chain_derivative(benchmark::State& st) {
   std::mt19937 rng(1);
@@ -112,6 +134,10 @@ void register_all() {
   reg("gantry_crane/rk4_step_eigen/handwritten", [](benchmark::State& s) {
     rk4_steps<E4, rk4_eigen<E4>>(s, crane_hw, E4(crane_x[0], crane_x[1], crane_x[2], crane_x[3]));
   });
+  reg("robot_arm/residual/106_equations", [](benchmark::State& s) { residual_eval(s, arm, arm_x); });
+  reg("robot_arm/recover/all_variables", [](benchmark::State& s) { recover_all(s, arm, arm_x); });
+  reg("gantry_crane/residual/125_equations", [](benchmark::State& s) { residual_eval(s, crane, crane_x); });
+  reg("gantry_crane/recover/all_variables", [](benchmark::State& s) { recover_all(s, crane, crane_x); });
   reg("chain2_planar/derivative/newton_euler", chain_derivative<2, models::planar_axes, false>);
   reg("chain2_planar/derivative/articulated_body", chain_derivative<2, models::planar_axes, true>);
   reg("chain4_spatial/derivative/newton_euler", chain_derivative<4, models::runtime_axes, false>);
@@ -138,18 +164,24 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   median_reporter rep;
   benchmark::RunSpecifiedBenchmarks(&rep);
-  auto ratio = [&](const std::string& scene, const std::string& what, const std::string& a, const std::string& b) {
+  // "<tag> <scene> <what> a/b = x.xx" exactly, then the medians on their own line.
+  auto ratio = [&](const char* tag, const std::string& scene, const std::string& what, const std::string& a,
+                   const std::string& b) {
     const auto x = rep.ns.find(scene + "/" + what + "/" + a), y = rep.ns.find(scene + "/" + what + "/" + b);
     if (x == rep.ns.end() || y == rep.ns.end()) return;
-    std::printf("ratio %s %s %s/%s = %.2f   (%.1f ns vs %.1f ns, medians)\n", scene.c_str(), what.c_str(), a.c_str(),
-                b.c_str(), x->second / y->second, x->second, y->second);
+    std::printf("%s %s %s %s/%s = %.2f\n", tag, scene.c_str(), what.c_str(), a.c_str(), b.c_str(),
+                x->second / y->second);
+    std::printf("  medians: %s %.1f ns, %s %.1f ns\n", a.c_str(), x->second, b.c_str(), y->second);
   };
   std::printf("\n");
   for (const char* scene : {"robot_arm", "gantry_crane"})
     for (const char* what : {"derivative", "rk4_step_array", "rk4_step_eigen"})
-      ratio(scene, what, "generated", "handwritten");
+      ratio("ratio", scene, what, "generated", "handwritten");
   for (const char* scene : {"chain2_planar", "chain4_spatial", "chain8_spatial"})
-    ratio(scene, "derivative", "newton_euler", "articulated_body");
+    ratio("algorithm", scene, "derivative", "newton_euler", "articulated_body");
+  for (const auto& [name, ns] : rep.ns)
+    if (name.find("/residual/") != std::string::npos || name.find("/recover/") != std::string::npos)
+      std::printf("cost %s = %.1f ns (median)\n", name.c_str(), ns);
 #ifdef FLANGE_COMPILE_TIMES
   std::ifstream ct(FLANGE_COMPILE_TIMES);
   std::string line;

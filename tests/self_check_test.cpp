@@ -7,20 +7,28 @@
 
 using namespace flange;
 
+namespace {
+/// Simulates 5 s with dense-output dopri5 at 1e-10 from x0, sampling every
+/// 10 ms, and returns the number of samples and the worst scaled residual.
+template <class S>
+std::pair<int, double> worst_residual_along(const S& scene, typename S::state_type x) {
+  int samples = 0;
+  double worst = 0;
+  odeint::integrate_const(odeint::make_dense_output(1e-10, 1e-10, odeint::runge_kutta_dopri5<typename S::state_type>()),
+                          scene, x, 0.0, 5.0, 0.01, record(scene, [&](const auto& sol) {
+                            ++samples;
+                            worst = std::max(worst, scaled_residual(scene, sol));
+                          }));
+  return {samples, worst};
+}
+}  // namespace
+
 TEST_CASE("the robot arm under a PD law satisfies its 106 equations along the trajectory") {
   auto pd = [](double t, const joint_state<double>& x) {
     return Vec3d(0, 0, -20.0 * (x.q(0) - std::sin(t)) - 2.0 * x.qd(0));
   };
   const auto arm = models::robot_arm({}, pd);
-  using A = decltype(arm)::state_type;
-  A x{-1.0, 0.0};
-  int samples = 0;
-  double worst = 0;
-  odeint::integrate_const(odeint::make_dense_output(1e-10, 1e-10, odeint::runge_kutta_dopri5<A>()), arm, x, 0.0, 5.0,
-                          0.01, record(arm, [&](const auto& sol) {
-                            ++samples;
-                            worst = std::max(worst, scaled_residual(arm, sol));
-                          }));
+  const auto [samples, worst] = worst_residual_along(arm, {-1.0, 0.0});
   INFO("worst scaled residual " << worst);
   CHECK(samples == 501);
   CHECK(worst < 1e-9);
@@ -28,15 +36,7 @@ TEST_CASE("the robot arm under a PD law satisfies its 106 equations along the tr
 
 TEST_CASE("the gantry crane under a time-varying force satisfies its 125 equations along the trajectory") {
   const auto crane = models::gantry_crane({}, [](double t) { return 5.0 * std::sin(3.0 * t); });
-  using C = decltype(crane)::state_type;
-  C x{0.0, -1.0, 0.0, 0.0};
-  int samples = 0;
-  double worst = 0;
-  odeint::integrate_const(odeint::make_dense_output(1e-10, 1e-10, odeint::runge_kutta_dopri5<C>()), crane, x, 0.0,
-                          5.0, 0.01, record(crane, [&](const auto& sol) {
-                            ++samples;
-                            worst = std::max(worst, scaled_residual(crane, sol));
-                          }));
+  const auto [samples, worst] = worst_residual_along(crane, {0.0, -1.0, 0.0, 0.0});
   INFO("worst scaled residual " << worst);
   CHECK(samples == 501);
   CHECK(worst < 1e-9);

@@ -191,47 +191,117 @@ struct zero : node {
 
 // ---------------------------------------------------------------- operations
 
-template <class A, class B>
-struct add : node {
-  static_assert(A::sh == B::sh, "flange: adding expressions of different shapes");
-  static constexpr shape sh = A::sh;
-  static constexpr int prec = prec_add;
+namespace detail {
+constexpr shape mul_shape(shape a, shape b) {
+  if (a == shape::scalar) return b;
+  if (b == shape::scalar) return a;
+  if (a == shape::mat && b == shape::vec) return shape::vec;
+  if (a == shape::mat && b == shape::mat) return shape::mat;
+  if (a == shape::vec && b == shape::row) return shape::mat;
+  if (a == shape::row && b == shape::vec) return shape::scalar;
+  if (a == shape::row && b == shape::mat) return shape::row;
+  throw "flange: these shapes cannot be multiplied";  // not a constant expression: compile error
+}
+}  // namespace detail
+
+/// A binary node: the operation Op says the result's shape, how to compute it
+/// and how it prints; the node only holds its operands (Eigen's split of
+/// what, op and how).
+template <class Op, class A, class B>
+struct binary : node {
+  static constexpr shape sh = Op::template result<A::sh, B::sh>();
+  static constexpr int prec = Op::prec;
   A a;
   B b;
-  add(A x, B y) : a(std::move(x)), b(std::move(y)) {}
+  binary(A x, B y) : a(std::move(x)), b(std::move(y)) {}
   template <class C>
   auto eval(const C& c) const {
-    if constexpr (sh == shape::scalar) return a.eval(c) + b.eval(c);
-    else return (a.eval(c) + b.eval(c)).eval();
+    return Op::apply(a.eval(c), b.eval(c));
   }
   template <class P>
   void print(std::ostream& os, const P& p) const {
-    print_child(os, a, p, prec_add);
-    os << " + ";
-    print_child(os, b, p, prec_add + 1);
+    print_child(os, a, p, Op::left_prec);
+    os << Op::symbol;
+    print_child(os, b, p, Op::right_prec);
   }
 };
 
-template <class A, class B>
-struct sub : node {
-  static_assert(A::sh == B::sh, "flange: subtracting expressions of different shapes");
-  static constexpr shape sh = A::sh;
-  static constexpr int prec = prec_add;
-  A a;
-  B b;
-  sub(A x, B y) : a(std::move(x)), b(std::move(y)) {}
-  template <class C>
-  auto eval(const C& c) const {
-    if constexpr (sh == shape::scalar) return a.eval(c) - b.eval(c);
-    else return (a.eval(c) - b.eval(c)).eval();
+namespace ops {
+template <class X>
+auto plain(X&& x) {
+  if constexpr (std::is_arithmetic_v<std::remove_cvref_t<X>>) return x;
+  else return x.eval();
+}
+struct plus {
+  template <shape A, shape B>
+  static constexpr shape result() {
+    static_assert(A == B, "flange: adding expressions of different shapes");
+    return A;
   }
-  template <class P>
-  void print(std::ostream& os, const P& p) const {
-    print_child(os, a, p, prec_add);
-    os << " − ";
-    print_child(os, b, p, prec_add + 1);
+  static constexpr int prec = prec_add, left_prec = prec_add, right_prec = prec_add + 1;
+  static constexpr const char* symbol = " + ";
+  template <class X, class Y>
+  static auto apply(const X& x, const Y& y) {
+    return plain(x + y);
   }
 };
+struct minus {
+  template <shape A, shape B>
+  static constexpr shape result() {
+    static_assert(A == B, "flange: subtracting expressions of different shapes");
+    return A;
+  }
+  static constexpr int prec = prec_add, left_prec = prec_add, right_prec = prec_add + 1;
+  static constexpr const char* symbol = " − ";
+  template <class X, class Y>
+  static auto apply(const X& x, const Y& y) {
+    return plain(x - y);
+  }
+};
+struct times {
+  template <shape A, shape B>
+  static constexpr shape result() {
+    return detail::mul_shape(A, B);
+  }
+  static constexpr int prec = prec_mul, left_prec = prec_mul, right_prec = prec_mul + 1;
+  static constexpr const char* symbol = "·";
+  template <class X, class Y>
+  static auto apply(const X& x, const Y& y) {
+    if constexpr (std::is_arithmetic_v<X> || std::is_arithmetic_v<Y>) {
+      return plain(x * y);
+    } else {
+      if constexpr (X::RowsAtCompileTime == 1 && Y::ColsAtCompileTime == 1) return (x * y)(0, 0);  // row·vector
+      else return plain(x * y);
+    }
+  }
+};
+struct cross_product {
+  template <shape A, shape B>
+  static constexpr shape result() {
+    static_assert(A == shape::vec && B == shape::vec, "flange: cross() takes two 3-vectors");
+    return shape::vec;
+  }
+  static constexpr int prec = prec_mul, left_prec = prec_mul + 1, right_prec = prec_mul + 1;
+  static constexpr const char* symbol = " × ";
+  template <class X, class Y>
+  static auto apply(const X& x, const Y& y) {
+    return x.cross(y).eval();
+  }
+};
+struct dot_product {
+  template <shape A, shape B>
+  static constexpr shape result() {
+    static_assert(A == shape::vec && B == shape::vec, "flange: dot() takes two 3-vectors");
+    return shape::scalar;
+  }
+  static constexpr int prec = prec_mul, left_prec = prec_mul + 1, right_prec = prec_mul + 1;
+  static constexpr const char* symbol = "·";
+  template <class X, class Y>
+  static auto apply(const X& x, const Y& y) {
+    return x.dot(y);
+  }
+};
+}  // namespace ops
 
 template <class A>
 struct neg : node {
@@ -251,79 +321,6 @@ struct neg : node {
   }
 };
 
-namespace detail {
-constexpr shape mul_shape(shape a, shape b) {
-  if (a == shape::scalar) return b;
-  if (b == shape::scalar) return a;
-  if (a == shape::mat && b == shape::vec) return shape::vec;
-  if (a == shape::mat && b == shape::mat) return shape::mat;
-  if (a == shape::vec && b == shape::row) return shape::mat;
-  if (a == shape::row && b == shape::vec) return shape::scalar;
-  if (a == shape::row && b == shape::mat) return shape::row;
-  throw "flange: these shapes cannot be multiplied";  // not a constant expression: compile error
-}
-}  // namespace detail
-
-template <class A, class B>
-struct mul : node {
-  static constexpr shape sh = detail::mul_shape(A::sh, B::sh);
-  static constexpr int prec = prec_mul;
-  A a;
-  B b;
-  mul(A x, B y) : a(std::move(x)), b(std::move(y)) {}
-  template <class C>
-  auto eval(const C& c) const {
-    if constexpr (A::sh == shape::row && B::sh == shape::vec) return (a.eval(c) * b.eval(c))(0, 0);
-    else if constexpr (sh == shape::scalar) return a.eval(c) * b.eval(c);
-    else return (a.eval(c) * b.eval(c)).eval();
-  }
-  template <class P>
-  void print(std::ostream& os, const P& p) const {
-    print_child(os, a, p, prec_mul);
-    os << "·";
-    print_child(os, b, p, prec_mul + 1);
-  }
-};
-
-template <class A, class B>
-struct cross_node : node {
-  static_assert(A::sh == shape::vec && B::sh == shape::vec, "flange: cross() takes two 3-vectors");
-  static constexpr shape sh = shape::vec;
-  static constexpr int prec = prec_mul;
-  A a;
-  B b;
-  cross_node(A x, B y) : a(std::move(x)), b(std::move(y)) {}
-  template <class C>
-  auto eval(const C& c) const {
-    return a.eval(c).cross(b.eval(c)).eval();
-  }
-  template <class P>
-  void print(std::ostream& os, const P& p) const {
-    print_child(os, a, p, prec_mul + 1);
-    os << " × ";
-    print_child(os, b, p, prec_mul + 1);
-  }
-};
-
-template <class A, class B>
-struct dot_node : node {
-  static_assert(A::sh == shape::vec && B::sh == shape::vec, "flange: dot() takes two 3-vectors");
-  static constexpr shape sh = shape::scalar;
-  static constexpr int prec = prec_mul;
-  A a;
-  B b;
-  dot_node(A x, B y) : a(std::move(x)), b(std::move(y)) {}
-  template <class C>
-  auto eval(const C& c) const {
-    return a.eval(c).dot(b.eval(c));
-  }
-  template <class P>
-  void print(std::ostream& os, const P& p) const {
-    print_child(os, a, p, prec_mul + 1);
-    os << "·";
-    print_child(os, b, p, prec_mul + 1);
-  }
-};
 
 template <class A>
 struct transpose_node : node {
@@ -384,12 +381,12 @@ struct trig_node : node {
   }
 };
 
-template <Expr A, Expr B> auto operator+(A a, B b) { return add<A, B>(std::move(a), std::move(b)); }
-template <Expr A, Expr B> auto operator-(A a, B b) { return sub<A, B>(std::move(a), std::move(b)); }
+template <Expr A, Expr B> auto operator+(A a, B b) { return binary<ops::plus, A, B>(std::move(a), std::move(b)); }
+template <Expr A, Expr B> auto operator-(A a, B b) { return binary<ops::minus, A, B>(std::move(a), std::move(b)); }
 template <Expr A> auto operator-(A a) { return neg<A>(std::move(a)); }
-template <Expr A, Expr B> auto operator*(A a, B b) { return mul<A, B>(std::move(a), std::move(b)); }
-template <Expr A, Expr B> auto cross(A a, B b) { return cross_node<A, B>(std::move(a), std::move(b)); }
-template <Expr A, Expr B> auto dot(A a, B b) { return dot_node<A, B>(std::move(a), std::move(b)); }
+template <Expr A, Expr B> auto operator*(A a, B b) { return binary<ops::times, A, B>(std::move(a), std::move(b)); }
+template <Expr A, Expr B> auto cross(A a, B b) { return binary<ops::cross_product, A, B>(std::move(a), std::move(b)); }
+template <Expr A, Expr B> auto dot(A a, B b) { return binary<ops::dot_product, A, B>(std::move(a), std::move(b)); }
 template <Expr A> auto transpose(A a) { return transpose_node<A>(std::move(a)); }
 template <Expr A> auto tilde(A a) { return tilde_node<A>(std::move(a)); }
 template <Expr A> auto sin(A a) { return trig_node<A, true>(std::move(a)); }

@@ -1,0 +1,34 @@
+# Plots the example trajectories for the README and docs/.
+#   build/examples/robot_arm --csv docs/robot_arm.csv
+#   build/examples/gantry_crane --csv docs/gantry_crane.csv
+#   gnuplot docs/plot_examples.gp        (from the repository root)
+set datafile separator ","
+set terminal pngcairo size 900,640 font "DejaVu Sans,10" noenhanced
+set key autotitle columnhead
+set grid
+
+set output "docs/robot_arm.png"
+set multiplot layout 3,1 title "flange robot arm: PD swing-up from hanging to 45° above horizontal"
+set ylabel "θ [deg]"
+plot "docs/robot_arm.csv" using 1:($2*180/pi) with lines lw 2 title "θ (from the downward vertical)", \
+     135 with lines dt 2 title "target"
+set ylabel "torque [N m]"
+plot "docs/robot_arm.csv" using 1:4 with lines lw 2 title "motor M_z", \
+     "" using 1:6 with lines lw 1 title "cut torque at rod.frame_a, z (equals M_z: the joint passes no torque about its axis)"
+set ylabel "energy [J]"
+set xlabel "t [s]"
+plot "docs/robot_arm.csv" using 1:5 with lines lw 2 title "kinetic + potential energy"
+unset multiplot
+
+set output "docs/gantry_crane.png"
+unset xlabel
+set multiplot layout 3,1 title "flange gantry crane: cart pushed for 1 s, braked for 1 s, then coasting"
+set ylabel "s [m]"
+plot "docs/gantry_crane.csv" using 1:2 with lines lw 2 title "cart position s"
+set ylabel "θ [deg]"
+plot "docs/gantry_crane.csv" using 1:($3*180/pi) with lines lw 2 title "load angle θ"
+set ylabel "force [N]"
+set xlabel "t [s]"
+plot "docs/gantry_crane.csv" using 1:6 with lines lw 2 title "push f", \
+     "" using 1:8 with lines lw 1 title "rope tension"
+unset multiplot
