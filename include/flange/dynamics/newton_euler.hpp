@@ -242,15 +242,16 @@ void composite_rigid_body(const S& scene, const X& xf, const ne_workspace_t<S, T
 /// factorisation (no square roots). Returns false if a pivot is not positive.
 template <int N, class T, class MM>
 bool solve_spd(MM& M, const T* r, T* a) {
-  std::array<T, N> inv_d;
+  std::array<T, N> d, inv_d;
   for (int j = 0; j < N; ++j) {
-    T d = M(j, j);
-    for (int k = 0; k < j; ++k) d -= M(j, k) * M(j, k) / inv_d[k];
-    if (!(d > T(0))) return false;
-    inv_d[j] = T(1) / d;
+    T dj = M(j, j);
+    for (int k = 0; k < j; ++k) dj -= M(j, k) * M(j, k) * d[k];
+    if (!(dj > T(0))) return false;
+    d[j] = dj;
+    inv_d[j] = T(1) / dj;
     for (int i = j + 1; i < N; ++i) {
       T v = M(i, j);
-      for (int k = 0; k < j; ++k) v -= M(i, k) * M(j, k) / inv_d[k];
+      for (int k = 0; k < j; ++k) v -= M(i, k) * M(j, k) * d[k];
       M(i, j) = v * inv_d[j];  // L(i, j), stored below the diagonal
     }
   }
