@@ -16,3 +16,4 @@
 #include "flange/simulate/odeint.hpp"
 #include "flange/models/paper.hpp"
 #include "flange/models/chain.hpp"
+#include "flange/simulate/jacobian.hpp"

@@ -76,6 +76,11 @@ auto eval_input(const In& in, const T& t, const joint_state<T>& x) {
   else if constexpr (std::is_invocable_v<const In&, const T&>) return expr::detail::cast<T>(in(t));
   else if constexpr (std::is_invocable_v<const In&, const T&, const joint_state<T>&>)
     return expr::detail::cast<T>(in(t, x));
+  else if constexpr (std::is_invocable_v<const In&, double> ||
+                     std::is_invocable_v<const In&, double, const joint_state<double>&>)
+    static_assert(always_false<In>,
+                  "flange: this input is written for double, but the dynamics run on another scalar (dual numbers "
+                  "for a Jacobian, or long double); write it generic, [](auto t) or [](auto t, const auto& x)");
   else static_assert(always_false<In>, "flange: an input is a number, an Eigen vector, a callable f(t) or f(t, x)");
 }
 

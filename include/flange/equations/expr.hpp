@@ -104,7 +104,9 @@ constexpr shape shape_of_value() {
 }
 template <class T, class V>
 auto cast(const V& v) {
-  if constexpr (std::is_arithmetic_v<V>) return T(v);
+  if constexpr (std::is_same_v<V, T>) return v;
+  else if constexpr (std::is_arithmetic_v<V>) return T(v);
+  else if constexpr (std::is_same_v<typename V::Scalar, T>) return v.eval();
   else return v.template cast<T>().eval();
 }
 }  // namespace detail

@@ -1,0 +1,130 @@
+// Forward-mode dual numbers: a value and N partial derivatives, carried
+// through the scalar-templated dynamics so that the derivative's Jacobian is
+// exact (no finite-difference step to choose). Eigen sees dual as a scalar type
+// through its NumTraits.
+#pragma once
+#include <array>
+#include <cmath>
+#include <limits>
+#include <ostream>
+
+#include <Eigen/Core>
+
+namespace flange {
+
+template <class T, int N>
+struct dual {
+  T v{};
+  std::array<T, N> d{};
+
+  constexpr dual() = default;
+  constexpr dual(T value) : v(value) {}  // NOLINT: a constant is a dual with zero derivatives
+  template <class U>
+    requires std::is_arithmetic_v<U>
+  constexpr dual(U value) : v(T(value)) {}  // NOLINT
+  /// x with ∂x/∂x_k = 1 (seeding direction k).
+  static dual variable(T value, int k) {
+    dual r(value);
+    r.d[k] = T(1);
+    return r;
+  }
+  explicit operator double() const { return static_cast<double>(v); }
+  explicit operator long double() const { return static_cast<long double>(v); }
+
+  dual& operator+=(const dual& o) {
+    v += o.v;
+    for (int k = 0; k < N; ++k) d[k] += o.d[k];
+    return *this;
+  }
+  dual& operator-=(const dual& o) {
+    v -= o.v;
+    for (int k = 0; k < N; ++k) d[k] -= o.d[k];
+    return *this;
+  }
+  dual& operator*=(const dual& o) {
+    for (int k = 0; k < N; ++k) d[k] = d[k] * o.v + v * o.d[k];
+    v *= o.v;
+    return *this;
+  }
+  dual& operator/=(const dual& o) {
+    const T inv = T(1) / o.v;
+    v *= inv;
+    for (int k = 0; k < N; ++k) d[k] = (d[k] - v * o.d[k]) * inv;
+    return *this;
+  }
+  friend dual operator+(dual a, const dual& b) { return a += b; }
+  friend dual operator-(dual a, const dual& b) { return a -= b; }
+  friend dual operator*(dual a, const dual& b) { return a *= b; }
+  friend dual operator/(dual a, const dual& b) { return a /= b; }
+  friend dual operator-(dual a) {
+    a.v = -a.v;
+    for (auto& x : a.d) x = -x;
+    return a;
+  }
+  friend dual operator+(const dual& a) { return a; }
+  friend bool operator<(const dual& a, const dual& b) { return a.v < b.v; }
+  friend bool operator>(const dual& a, const dual& b) { return a.v > b.v; }
+  friend bool operator<=(const dual& a, const dual& b) { return a.v <= b.v; }
+  friend bool operator>=(const dual& a, const dual& b) { return a.v >= b.v; }
+  friend bool operator==(const dual& a, const dual& b) { return a.v == b.v; }
+  friend bool operator!=(const dual& a, const dual& b) { return a.v != b.v; }
+
+  /// f(a) with f(a.v) = fv and f'(a.v) = dfv.
+  friend dual chain(const dual& a, T fv, T dfv) {
+    dual r(fv);
+    for (int k = 0; k < N; ++k) r.d[k] = dfv * a.d[k];
+    return r;
+  }
+  friend dual sin(const dual& a) {
+    using std::cos;
+    using std::sin;
+    return chain(a, sin(a.v), cos(a.v));
+  }
+  friend dual cos(const dual& a) {
+    using std::cos;
+    using std::sin;
+    return chain(a, cos(a.v), -sin(a.v));
+  }
+  friend dual sqrt(const dual& a) {
+    using std::sqrt;
+    const T s = sqrt(a.v);
+    return chain(a, s, T(0.5) / s);
+  }
+  friend dual abs(const dual& a) { return a.v < T(0) ? -a : a; }
+  friend dual atan2(const dual& y, const dual& x) {
+    using std::atan2;
+    const T r2 = x.v * x.v + y.v * y.v;
+    dual r(atan2(y.v, x.v));
+    for (int k = 0; k < N; ++k) r.d[k] = (x.v * y.d[k] - y.v * x.d[k]) / r2;
+    return r;
+  }
+  friend bool isfinite(const dual& a) {
+    using std::isfinite;
+    if (!isfinite(a.v)) return false;
+    for (const auto& x : a.d)
+      if (!isfinite(x)) return false;
+    return true;
+  }
+  friend std::ostream& operator<<(std::ostream& os, const dual& a) { return os << a.v; }
+};
+
+}  // namespace flange
+
+namespace Eigen {
+template <class T, int N>
+struct NumTraits<flange::dual<T, N>> : NumTraits<T> {
+  using Real = flange::dual<T, N>;
+  using NonInteger = flange::dual<T, N>;
+  using Nested = flange::dual<T, N>;
+  using Literal = flange::dual<T, N>;
+  enum {
+    IsComplex = 0,
+    IsInteger = 0,
+    IsSigned = 1,
+    RequireInitialization = 1,
+    ReadCost = 1 + N,
+    AddCost = 1 + N,
+    MulCost = 1 + 2 * N
+  };
+};
+}  // namespace Eigen
