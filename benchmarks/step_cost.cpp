@@ -118,6 +118,10 @@ void register_all() {
   reg("robot_arm/rk4_step_array/generated", [](benchmark::State& s) { rk4_steps<A2, rk4_array<A2>>(s, arm, arm_x); });
   reg("robot_arm/rk4_step_array/handwritten",
       [](benchmark::State& s) { rk4_steps<A2, rk4_array<A2>>(s, arm_hw, arm_x); });
+  reg("robot_arm/rk4_step_array/checked", [](benchmark::State& s) {
+    static budget b;
+    rk4_steps<A2, rk4_array<A2>>(s, checked(arm, b), arm_x);
+  });
   reg("robot_arm/rk4_step_eigen/generated",
       [](benchmark::State& s) { rk4_steps<E2, rk4_eigen<E2>>(s, arm, E2(arm_x[0], arm_x[1])); });
   reg("robot_arm/rk4_step_eigen/handwritten",
@@ -179,6 +183,7 @@ int main(int argc, char** argv) {
       ratio("ratio", scene, what, "generated", "handwritten");
   for (const char* scene : {"chain2_planar", "chain4_spatial", "chain8_spatial"})
     ratio("algorithm", scene, "derivative", "newton_euler", "articulated_body");
+  ratio("overhead", "robot_arm", "rk4_step_array", "checked", "generated");
   for (const auto& [name, ns] : rep.ns)
     if (name.find("/residual/") != std::string::npos || name.find("/recover/") != std::string::npos)
       std::printf("cost %s = %.1f ns (median)\n", name.c_str(), ns);

@@ -17,3 +17,4 @@
 #include "flange/models/paper.hpp"
 #include "flange/models/chain.hpp"
 #include "flange/simulate/jacobian.hpp"
+#include "flange/simulate/checked.hpp"

@@ -274,7 +274,8 @@ void joint_inputs(const S& scene, const T& t, const joint_state<T>& x, T* tau) {
   for (int i = 0; i < S::n_q; ++i) tau[i] = T(0);
   for_links<S>([&](auto l) {
     using LI = link_info<S, decltype(l)::value>;
-    if constexpr (LI::joint_type::has_input) tau[LI::q] = scene.template component<LI::joint>().generalized_force(t, x);
+    if constexpr (LI::joint_type::has_input)
+      tau[LI::q] = scene.template component<LI::joint>().generalized_force(t, x, LI::q);
   });
 }
 

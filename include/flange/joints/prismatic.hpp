@@ -55,7 +55,7 @@ class Prismatic {
 
   /// The generalised force on s: the axial force input at (t, x).
   template <class T>
-  [[nodiscard]] T generalized_force(const T& t, const joint_state<T>& x) const {
+  [[nodiscard]] T generalized_force(const T& t, const joint_state<T>& x, int) const {
     return eval_input(f_, t, x);
   }
 

@@ -12,6 +12,15 @@
 //
 // Revolute<"elbow", axis::z> fixes the axis at compile time; Revolute<"elbow">
 // takes it at construction.
+//
+// Revolute<"elbow", axis::z, axis_law::spring_damper> adds a linear spring
+// (stiffness c, rest angle φ0) and damper (d) acting along the axis, like a
+// Modelica SpringDamper on the joint's 1-D flange. The last equation becomes
+//
+//   M₂·n = c·(φ − φ0) + d·φ̇
+//
+// (the joint's own torque on frame_b's side is −c·(φ − φ0) − d·φ̇). A scene
+// without it has no such arithmetic.
 #pragma once
 #include <boost/hana/tuple.hpp>
 
@@ -24,16 +33,28 @@ namespace flange {
 
 enum class joint_type { revolute, prismatic };
 
+namespace axis_law {
+struct none {};           ///< the paper's joint: no torque about the axis
+struct spring_damper {};  ///< linear spring and damper along the axis
+}  // namespace axis_law
+
 namespace detail {
-template <class Axis>
-struct axis_params {
+template <class Axis, class Law>
+struct revolute_params {
   Vec3d n = Vec3d::UnitZ();
 };
 template <int I>
-struct axis_params<axis::coordinate<I>> {};
+struct revolute_params<axis::coordinate<I>, axis_law::none> {};
+template <class Axis>
+struct revolute_params<Axis, axis_law::spring_damper> {
+  Vec3d n = Vec3d::UnitZ();  ///< ignored for a compile-time axis
+  double c = 0;              ///< stiffness [N m/rad]
+  double d = 0;              ///< damping [N m s/rad]
+  double phi0 = 0;           ///< rest angle [rad]
+};
 }  // namespace detail
 
-template <fixed_string Name, class Axis = axis::any>
+template <fixed_string Name, class Axis = axis::any, class Law = axis_law::none>
 class Revolute {
  public:
   static constexpr auto name = Name;
@@ -44,14 +65,32 @@ class Revolute {
   static constexpr std::array<std::string_view, 2> frames{"frame_a", "frame_b"};
   static constexpr std::array<internal_decl, 2> internals{
       {{"φ", expr::var_kind::scalar}, {"R_rel", expr::var_kind::rot}}};
-  static constexpr bool has_input = false;
+  static constexpr bool has_spring_damper = std::is_same_v<Law, axis_law::spring_damper>;
+  static constexpr bool has_input = has_spring_damper;
 
-  using params = detail::axis_params<Axis>;
+  using params = detail::revolute_params<Axis, Law>;
 
   Revolute() : Revolute(params{}) {}
   explicit Revolute(params p) {
     if constexpr (Axis::fixed) n_ = Axis::unit();
     else n_ = detail::unit_axis(name.view(), "Revolute", p.n);
+    if constexpr (has_spring_damper) {
+      for (auto [what, v] : {std::pair{"c (stiffness)", p.c}, {"d (damping)", p.d}, {"phi0", p.phi0}})
+        detail::require_finite(name.view(), "Revolute", what, v);
+      if (p.c < 0 || p.d < 0)
+        throw parameter_error(detail::concat("Revolute \"", name.view(), "\": spring-damper c = ", p.c, ", d = ", p.d,
+                                             "; stiffness and damping must not be negative"));
+      c_ = p.c;
+      d_ = p.d;
+      phi0_ = p.phi0;
+    }
+  }
+
+  /// The generalised force of the axis law on φ: −c·(φ − φ0) − d·φ̇.
+  template <class T>
+  [[nodiscard]] T generalized_force(const T&, const joint_state<T>& x, int q) const {
+    if constexpr (has_spring_damper) return -T(c_) * (x.q(q) - T(phi0_)) - T(d_) * x.qd(q);
+    else return T(0);
   }
 
   [[nodiscard]] const Vec3d& n() const { return n_; }
@@ -68,7 +107,7 @@ class Revolute {
         orientation_eq(R_<1>, R_rel * R_<0>),      //
         eq(F_<1>, -(R_rel * F_<0>)),               //
         eq(M_<1>, -(R_rel * M_<0>)),               //
-        eq(zero<shape::scalar>{}, dot(M_<1>, n)));
+        axis_equation(n));
   }
 
   template <class T>
@@ -87,7 +126,16 @@ class Revolute {
   }
 
  private:
+  auto axis_equation(const expr::param<Vec3d>& n) const {
+    using namespace expr;
+    if constexpr (has_spring_damper)
+      return eq(dot(M_<1>, n), param<double>{c_, "c"} * (phi - param<double>{phi0_, "φ0"}) +
+                                   param<double>{d_, "d"} * der(phi));
+    else return eq(zero<shape::scalar>{}, dot(M_<1>, n));
+  }
+
   Vec3d n_;
+  double c_ = 0, d_ = 0, phi0_ = 0;
 };
 
 }  // namespace flange

@@ -1,0 +1,78 @@
+// A checked system: the scene wrapped so that any Odeint stepper and integrate
+// function fails loudly instead of quietly.
+//
+//   flange::budget b{.max_rhs_evals = 100000};
+//   odeint::integrate_adaptive(stepper, flange::checked(scene, b), x, t0, t1, dt);
+//
+// It throws flange::simulation_error, with the time, the state and the reason,
+//   * when the state or the derivative is not finite (a NaN never propagates
+//     into a trajectory),
+//   * when the budget of derivative evaluations is spent: the usual sign that
+//     an explicit stepper meets a stiff scene (Boost 1.74's max_step_checker
+//     does not stop a controlled stepper in integrate_const; this does),
+// and lets the derivative's own errors (singular mass matrix) through.
+// b.rhs_evals counts the evaluations, so b also reports the cost of a run.
+#pragma once
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "flange/errors.hpp"
+
+namespace flange {
+
+struct budget {
+  long max_rhs_evals = std::numeric_limits<long>::max();
+  long rhs_evals = 0;  ///< evaluations made so far (across copies of the checked system)
+};
+
+namespace detail {
+template <class State>
+std::string describe(const State& x) {
+  std::ostringstream os;
+  os.precision(17);
+  os << "x = [";
+  for (std::size_t i = 0; i < x.size(); ++i) os << (i ? ", " : "") << static_cast<double>(x[i]);
+  os << "]";
+  return os.str();
+}
+template <class State>
+bool finite(const State& x) {
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (!std::isfinite(static_cast<double>(x[i]))) return false;
+  return true;
+}
+}  // namespace detail
+
+template <class S>
+struct checked_system {
+  const S* scene;
+  budget* b;
+  template <class State, class T>
+  void operator()(const State& x, State& dxdt, const T t) const {
+    if (++b->rhs_evals > b->max_rhs_evals) [[unlikely]]
+      fail("the budget of " + std::to_string(b->max_rhs_evals) +
+               " derivative evaluations is spent (a stiff scene for an explicit stepper? try rosenbrock4)",
+           x, t);
+    if (!detail::finite(x)) [[unlikely]]
+      fail("the state is not finite", x, t);
+    (*scene)(x, dxdt, t);
+    if (!detail::finite(dxdt)) [[unlikely]]
+      fail("the derivative is not finite", x, t);
+  }
+
+ private:
+  template <class State, class T>
+  [[noreturn, gnu::cold]] static void fail(const std::string& why, const State& x, const T& t) {
+    throw simulation_error(detail::concat("flange: ", why, " at t = ", static_cast<double>(t), ", ", detail::describe(x)),
+                           static_cast<double>(t));
+  }
+};
+
+/// The scene as a checked Odeint system; b must outlive the integration.
+template <class S>
+checked_system<S> checked(const S& scene, budget& b) {
+  return {&scene, &b};
+}
+
+}  // namespace flange
