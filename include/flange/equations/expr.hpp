@@ -234,32 +234,24 @@ auto plain(X&& x) {
   if constexpr (std::is_arithmetic_v<std::remove_cvref_t<X>>) return x;
   else return x.eval();
 }
-struct plus {
+/// a + b (Sign = +1) and a − b (Sign = −1).
+template <int Sign>
+struct additive {
   template <shape A, shape B>
   static constexpr shape result() {
-    static_assert(A == B, "flange: adding expressions of different shapes");
+    static_assert(A == B, "flange: adding or subtracting expressions of different shapes");
     return A;
   }
   static constexpr int prec = prec_add, left_prec = prec_add, right_prec = prec_add + 1;
-  static constexpr const char* symbol = " + ";
+  static constexpr const char* symbol = Sign > 0 ? " + " : " − ";
   template <class X, class Y>
   static auto apply(const X& x, const Y& y) {
-    return plain(x + y);
+    if constexpr (Sign > 0) return plain(x + y);
+    else return plain(x - y);
   }
 };
-struct minus {
-  template <shape A, shape B>
-  static constexpr shape result() {
-    static_assert(A == B, "flange: subtracting expressions of different shapes");
-    return A;
-  }
-  static constexpr int prec = prec_add, left_prec = prec_add, right_prec = prec_add + 1;
-  static constexpr const char* symbol = " − ";
-  template <class X, class Y>
-  static auto apply(const X& x, const Y& y) {
-    return plain(x - y);
-  }
-};
+using plus = additive<+1>;
+using minus = additive<-1>;
 struct times {
   template <shape A, shape B>
   static constexpr shape result() {
