@@ -1,0 +1,211 @@
+// Hard cases that must stay numerically stable, each against something
+// independent: an exact formula, a conservation law, the closed form, or a
+// long-double solve. (Labelled "hard" in ctest.)
+#include <boost/math/special_functions/ellint_1.hpp>
+#include <catch2/catch.hpp>
+#include <flange/flange.hpp>
+
+#include "random_params.hpp"
+
+using namespace flange;
+
+namespace {
+const models::robot_arm_params P{.m = 1.0, .d = 0.5, .Jx = 0.01, .Jz = 0.02, .g = 9.81};
+constexpr double pi = 3.14159265358979323846;
+using A = std::array<double, 2>;
+
+/// The first time after t0 at which φ̇ changes sign from `from_sign`, found by
+/// bisection on dopri5's dense output (its interpolant is accurate to the tolerance).
+template <class S, class Stepper>
+double next_turn(const S& s, Stepper& st, double from_sign) {
+  while (true) {
+    const auto [t0, t1] = st.do_step(s);
+    if (from_sign * st.current_state()[1] <= 0) {
+      double a = t0, b = t1;
+      A x;
+      for (int i = 0; i < 80; ++i) {
+        const double m = 0.5 * (a + b);
+        st.calc_state(m, x);
+        (from_sign * x[1] > 0 ? a : b) = m;
+      }
+      return 0.5 * (a + b);
+    }
+  }
+}
+}  // namespace
+
+TEST_CASE("a large-amplitude swing has the exact period 4·sqrt(I/(m g d))·K(sin(θ0/2))", "[hard]") {
+  const auto arm = models::robot_arm(P);
+  const double I = P.Jz + P.m * P.d * P.d;
+  for (double theta0 : {0.5, 2.0, 3.0, 3.1}) {  // up to 178° from hanging
+    const double exact = 4 * std::sqrt(I / (P.m * P.g * P.d)) * boost::math::ellint_1(std::sin(theta0 / 2));
+    auto st = odeint::make_dense_output(1e-13, 1e-13, odeint::runge_kutta_dopri5<A>());
+    st.initialize(A{theta0 - pi / 2, 0.0}, 0.0, 1e-4);  // φ = θ − π/2, at rest
+    // From rest at +θ0 the rate turns negative, stops at −θ0 (half period),
+    // then stops again at +θ0: the period.
+    st.do_step(arm);
+    next_turn(arm, st, -1);
+    const double period = next_turn(arm, st, +1);
+    INFO("θ0 = " << theta0 << ": period " << period << ", relative error " << (period - exact) / exact);
+    // dopri5 at 1e-13 over one period: the crossing time is good to ~1e-12
+    // relative; 1e-8 is the bar.
+    CHECK(std::abs(period - exact) <= 1e-8 * exact);
+  }
+}
+
+TEST_CASE("with just enough energy the arm passes over the top; with just too little it does not", "[hard]") {
+  const auto arm = models::robot_arm(P);
+  const double I = P.Jz + P.m * P.d * P.d, top = 2 * P.m * P.g * P.d;  // energy needed from hanging to upright
+  for (double excess : {1e-6, -1e-6}) {
+    A x{-pi / 2, std::sqrt(2 * top * (1 + excess) / I)};  // hanging, with the rate for that energy
+    double max_phi = x[0];
+    odeint::integrate_const(odeint::make_dense_output(1e-13, 1e-13, odeint::runge_kutta_dopri5<A>()), arm, x, 0.0,
+                            10.0, 1e-3, [&](const A& s, double) { max_phi = std::max(max_phi, s[0]); });
+    INFO("energy excess " << excess << ": largest φ " << max_phi);
+    if (excess > 0) CHECK(max_phi > 3 * pi / 2);   // past upright (φ = π/2) and on around
+    else CHECK(max_phi < pi / 2);                  // turns back before upright
+  }
+}
+
+TEST_CASE("released 1e-9 rad from upright, double and long double fall together", "[hard]") {
+  const auto arm = models::robot_arm(P);
+  const double phi0 = pi / 2 - 1e-9;  // the same double start for both
+  // Dense output and bisection for the time the arm is 1 rad below upright.
+  auto fall_time = [&](auto zero, auto tol) {
+    using T = decltype(zero);
+    using X = std::array<T, 2>;
+    auto st = odeint::make_dense_output<odeint::runge_kutta_dopri5<X, T>>(tol, tol);
+    st.initialize(X{T(phi0), T(0)}, T(0), T(1e-3));
+    const T threshold = T(pi / 2 - 1);
+    while (true) {
+      const auto [t0, t1] = st.do_step(arm);
+      if (st.current_state()[0] <= threshold) {
+        T lo = t0, hi = t1;
+        X x;
+        for (int i = 0; i < 100; ++i) {
+          const T mid = (lo + hi) / 2;
+          st.calc_state(mid, x);
+          (x[0] > threshold ? lo : hi) = mid;
+        }
+        return static_cast<double>((lo + hi) / 2);
+      }
+    }
+  };
+  const double td = fall_time(0.0, 1e-14), tl = fall_time(0.0L, 1e-18L);
+  const double lambda = std::sqrt(P.m * P.g * P.d / (P.Jz + P.m * P.d * P.d));
+  INFO("fall time double " << td << ", long double " << tl << ", relative difference " << (td - tl) / tl
+                            << ", linearised estimate " << std::log(2.0 / 1e-9) / lambda);
+  // Near upright the double state φ ≈ π/2 carries absolute errors of about
+  // 1e-14 (the tolerance) against a deviation of 1e-9: a relative error of
+  // ~1e-5 in the deviation, which shifts the fall time by ~1e-5/λ (~1e-6
+  // relative). The long-double solve (1e-18) has no such floor. So the two
+  // agree to 1e-5 relative, and both sit near the linearised estimate
+  // ln(2/ε)/λ (within 10%: the nonlinear end of the fall).
+  CHECK(std::abs(td - tl) <= 1e-5 * tl);
+  CHECK(std::abs(td * lambda / std::log(2.0 / 1e-9) - 1) < 0.1);
+}
+
+TEST_CASE("a rotor spun through 10⁴ revolutions keeps its energy and its cut force", "[hard]") {
+  auto rotor = scene(World<"world", gravity_kind::none>{}, Revolute<"joint", axis::z>{},
+                     FixedTranslation<"rod">({.d = {0.5, 0, 0}}),
+                     Body<"mass">({.m = 1.0, .J = Vec3d(0.01, 0.02, 0.02).asDiagonal()}),
+                     connect<"world.frame_b", "joint.frame_a">, connect<"joint.frame_b", "rod.frame_a">,
+                     connect<"rod.frame_b", "mass.frame_a">);
+  const double w = 2 * pi * 100, T = 100;  // 100 rev/s for 100 s
+  A x{0.0, w};
+  const double e0 = recover(rotor, 0.0, x).energy();
+  // Exactly 10⁶ steps (integrate_const may drop the last step to rounding of t).
+  odeint::integrate_n_steps(odeint::runge_kutta4<A>(), rotor, x, 0.0, T / 1000000, 1000000);
+  const auto sol = recover(rotor, T, x);
+  const double force = sol.cut_at("joint.frame_b").f.norm();
+  INFO("angle error " << x[0] - w * T << " rad after " << w * T << " rad, energy error " << (sol.energy() - e0) / e0
+                      << ", bearing force relative error " << (force - 0.5 * w * w) / (0.5 * w * w));
+  // A free rotor: φ̇ stays exactly constant in exact arithmetic and the
+  // derivative is exactly 0, so RK4 adds only rounding to the angle (10⁶ steps
+  // of ulp(6.3e4) ≈ 7e-12 each, at worst 1e-5 in all). Energy and the
+  // centripetal force m·d·ω² depend on φ̇ alone: no loss from the huge angle.
+  CHECK(std::abs(x[0] - w * T) <= 1e-5);
+  CHECK(std::abs(sol.energy() - e0) <= 1e-14 * e0);
+  CHECK(std::abs(force - 1.0 * 0.5 * w * w) <= 1e-12 * force);
+}
+
+TEST_CASE("extreme parameters stay finite and agree with the closed forms", "[hard]") {
+  std::mt19937 rng(31);
+  SECTION("gantry crane with m/M from 1e-8 to 1e8") {
+    for (double ratio : {1e-8, 1e-4, 1.0, 1e4, 1e8}) {
+      const models::gantry_crane_params p{.M = 1.0, .m = ratio, .d = 0.7, .g = 9.81};
+      const double f = 2.0;
+      const auto crane = models::gantry_crane(p, f);
+      for (int k = 0; k < 20; ++k) {
+        std::array<double, 4> x, dx;
+        for (auto& v : x) v = test::uniform(rng, -3, 3);
+        crane(x, dx, 0.0);
+        const auto ref = models::gantry_crane_accelerations(p, f, x[1] + pi / 2, x[3]);
+        const double den = p.M + p.m * std::pow(std::sin(x[1] + pi / 2), 2);
+        const double num = std::abs(f) + (p.g + p.d * x[3] * x[3]) * (p.m + p.M);
+        INFO("m/M = " << ratio);
+        // The mass matrix's condition number grows with the ratio (~ max(m/M,
+        // M/m) near the vertical), so the tolerance carries it.
+        const double cond = std::max(ratio, 1 / ratio);
+        CHECK(std::isfinite(dx[2]));
+        CHECK(std::abs(dx[2] - ref.s_dd) <= 1e-12 * cond * num / den);
+        CHECK(std::abs(dx[3] - ref.theta_dd) <= 1e-12 * cond * num / (p.d * den));
+      }
+    }
+  }
+  SECTION("robot arm with lengths and inertias from 1e-6 to 1e6") {
+    for (double scale : {1e-6, 1e-3, 1.0, 1e3, 1e6}) {
+      const models::robot_arm_params p{.m = 2.0, .d = scale, .Jx = 0.5 * scale * scale, .Jz = 0.4 * scale * scale, .g = 9.81};
+      const double Mz = scale;
+      const auto arm = models::robot_arm(p, Vec3d(0, 0, Mz));
+      for (int k = 0; k < 20; ++k) {
+        const A x{test::uniform(rng, -4, 4), test::uniform(rng, -4, 4)};
+        A dx;
+        arm(x, dx, 0.0);
+        const double ref = models::robot_arm_theta_dd(p, Mz, x[0] + pi / 2);
+        const double terms = (std::abs(Mz) + p.m * p.d * p.g) / (p.Jz + p.m * p.d * p.d);
+        INFO("scale " << scale);
+        CHECK(std::isfinite(dx[1]));
+        CHECK(std::abs(dx[1] - ref) <= 1e-12 * terms);
+      }
+    }
+  }
+}
+
+TEST_CASE("a chaotic double pendulum conserves energy and follows the long-double solve to a justified horizon", "[hard]") {
+  models::chain_params<2> p;
+  for (int i = 0; i < 2; ++i) {
+    p.axis[i] = Vec3d::UnitZ();
+    p.d[i] = Vec3d(0.5, 0, 0);
+    p.m[i] = 1.0;
+    p.J[i] = Vec3d(0.001, 0.002, 0.002).asDiagonal();
+  }
+  const auto dp = models::chain<2, models::planar_axes>(p);
+  using X = std::array<double, 4>;
+  using L = std::array<long double, 4>;
+  X x{2.0, 2.5, 0.0, 0.0};  // both links high: chaotic
+  L xl{2.0L, 2.5L, 0.0L, 0.0L};
+  const double e0 = recover(dp, 0.0, x).energy();
+  double worst_energy = 0, first_divergence = -1;
+  auto st = odeint::make_dense_output(1e-13, 1e-13, odeint::runge_kutta_dopri5<X>());
+  auto stl = odeint::make_dense_output<odeint::runge_kutta_dopri5<L, long double>>(1e-18L, 1e-18L);
+  st.initialize(x, 0.0, 1e-4);
+  stl.initialize(xl, 0.0L, 1e-4L);
+  for (int k = 1; k <= 2000; ++k) {  // every 10 ms for 20 s
+    const double t = 0.01 * k;
+    while (st.current_time() < t) st.do_step(dp);
+    while (stl.current_time() < t) stl.do_step(dp);
+    st.calc_state(t, x);
+    stl.calc_state(t, xl);
+    worst_energy = std::max(worst_energy, std::abs(recover(dp, t, x).energy() - e0) / std::abs(e0));
+    double diff = 0;
+    for (int i = 0; i < 2; ++i) diff = std::max(diff, std::abs(x[i] - static_cast<double>(xl[i])));
+    if (diff > 1e-3 && first_divergence < 0) first_divergence = t;
+  }
+  INFO("worst relative energy error " << worst_energy << "; double leaves the long-double solve (by 1e-3 rad) at t = "
+                                      << first_divergence);
+  CHECK(worst_energy < 1e-10);
+  // Errors of ~1e-13 grow like e^{λt}; with λ of a few 1/s they reach 1e-3 rad
+  // after ln(1e10)/λ ≈ 5–10 s. Agreement is required up to 4 s.
+  CHECK((first_divergence < 0 || first_divergence > 4.0));
+}
