@@ -2,11 +2,15 @@
 // oscillator, through the residual, and stiff (c = 1e9), where rosenbrock4
 // with the exact Jacobian finishes in a bounded number of steps and an
 // explicit stepper fails loudly (a step-count limit), never quietly.
+#include <vector>
+
 #include <catch2/catch.hpp>
 #include <flange/flange.hpp>
 #include <flange/simulate/checked.hpp>
 #include <flange/simulate/odeint.hpp>
 #include <flange/simulate/rosenbrock4.hpp>
+
+#include "consistency.hpp"
 
 using namespace flange;
 
@@ -33,13 +37,17 @@ TEST_CASE("a joint spring-damper is the exact damped oscillator") {
   const double A = 1.0 - phi0, B = (0.5 + zeta * w * A) / wd;  // φ(0) = 1, φ̇(0) = 0.5
   X x{1.0, 0.5};
   double worst = 0, worst_residual = 0;
+  test::consistency along;
   odeint::integrate_const(odeint::make_dense_output(1e-12, 1e-12, odeint::runge_kutta_dopri5<X>()), s, x, 0.0, 10.0,
                           0.1, record(s, [&](const auto& sol) {
                             const double t = sol.t;
                             const double exact = phi0 + std::exp(-zeta * w * t) * (A * std::cos(wd * t) + B * std::sin(wd * t));
                             worst = std::max(worst, std::abs(sol.q[0] - exact));
                             worst_residual = std::max(worst_residual, scaled_residual(s, sol));
+                            along.sample(s, t, X{sol.q[0], sol.qd[0]});
                           }));
+  CHECK(along.orthogonality <= 1e-12);
+  CHECK(along.algorithms <= 1e-10);
   INFO("worst error " << worst << ", worst scaled residual " << worst_residual);
   // dopri5 at 1e-12 over ≈ 4 periods: the global error stays near 1e-11.
   CHECK(worst < 1e-9);
@@ -58,12 +66,60 @@ TEST_CASE("a stiff joint spring (c = 1e9): rosenbrock4 settles in few steps, dop
   const std::size_t steps = integrate_rosenbrock4(s, x, 0.0, 1.0, 1e-6, 1e-8, 1e-8);
   INFO("rosenbrock4: " << steps << " steps, final φ = " << x[0] << ", φ̇ = " << x[1]);
   CHECK(steps < 500);
+  test::consistency along;
+  along.sample(s, 1.0, x);
+  CHECK(along.orthogonality <= 1e-12);
+  CHECK(along.residual <= 1e-9);
+  CHECK(along.algorithms <= 1e-10);
   CHECK(std::abs(x[0] - phi0) < 1e-8);
   CHECK(std::abs(x[1]) < 1e-6);
   // An explicit stepper must stay below its stability limit h ≈ 3.3/ω ≈ 5e-5 s:
   // dopri5 needs about 18 600 steps (over 110 000 evaluations) for this second,
   // against rosenbrock4's 408. A budget stops it with an exception, with the
   // time and state, instead of a silent crawl.
+  // Every explicit stepper: how many evaluations it needs for this second,
+  // and that a budget below that stops it loudly. (Fixed-step RK4 at a step
+  // above its stability limit blows up instead; the checked system reports
+  // the non-finite state.)
+  struct row {
+    const char* name;
+    long evals;
+  };
+  std::vector<row> table;
+  auto survey = [&](const char* name, auto&& integrate) {
+    budget unlimited;
+    X z{1.0, 0.0};
+    integrate(checked(s, unlimited), z);
+    table.push_back({name, unlimited.rhs_evals});
+    CHECK(std::abs(z[0] - phi0) < 1e-6);  // they do get there, at a price
+    budget limited{.max_rhs_evals = 20000};
+    X w{1.0, 0.0};
+    CHECK_THROWS_AS(integrate(checked(s, limited), w), simulation_error);
+  };
+  survey("runge_kutta_cash_karp54", [](auto sys, X& z) {
+    odeint::integrate_adaptive(odeint::make_controlled(1e-8, 1e-8, odeint::runge_kutta_cash_karp54<X>()), sys, z, 0.0,
+                               1.0, 1e-6);
+  });
+  survey("runge_kutta_dopri5", [](auto sys, X& z) {
+    odeint::integrate_adaptive(odeint::make_controlled(1e-8, 1e-8, odeint::runge_kutta_dopri5<X>()), sys, z, 0.0, 1.0,
+                               1e-6);
+  });
+  survey("runge_kutta_fehlberg78", [](auto sys, X& z) {
+    odeint::integrate_adaptive(odeint::make_controlled(1e-8, 1e-8, odeint::runge_kutta_fehlberg78<X>()), sys, z, 0.0,
+                               1.0, 1e-6);
+  });
+  survey("bulirsch_stoer", [](auto sys, X& z) {
+    odeint::bulirsch_stoer<X> bs(1e-8, 1e-8);
+    odeint::integrate_adaptive(bs, sys, z, 0.0, 1.0, 1e-6);
+  });
+  for (const auto& r : table) UNSCOPED_INFO(r.name << ": " << r.evals << " evaluations (rosenbrock4: " << steps << " steps)");
+  {
+    budget b;
+    X z{1.0, 0.0};
+    CHECK_THROWS_WITH(odeint::integrate_const(odeint::runge_kutta4<X>(), checked(s, b), z, 0.0, 1.0, 1e-4),
+                      Catch::Matchers::Contains("not finite"));
+  }
+  CHECK(table.size() == 4);
   X y{1.0, 0.0};
   budget b{.max_rhs_evals = 20000};
   CHECK_THROWS_WITH(odeint::integrate_adaptive(odeint::make_controlled(1e-8, 1e-8, odeint::runge_kutta_dopri5<X>()),

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <flange/flange.hpp>
 
+#include "consistency.hpp"
 #include "random_params.hpp"
 
 using namespace flange;
@@ -44,8 +45,17 @@ TEST_CASE("a large-amplitude swing has the exact period 4·sqrt(I/(m g d))·K(si
     // From rest at +θ0 the rate turns negative, stops at −θ0 (half period),
     // then stops again at +θ0: the period.
     st.do_step(arm);
-    next_turn(arm, st, -1);
+    const double half = next_turn(arm, st, -1);
     const double period = next_turn(arm, st, +1);
+    test::consistency c;
+    A x;
+    for (double t : {0.25 * half, half, 1.5 * half, period}) {
+      st.calc_state(t, x);
+      c.sample(arm, t, x);
+    }
+    CHECK(c.orthogonality <= 1e-12);
+    CHECK(c.residual <= 1e-9);
+    CHECK(c.algorithms <= 1e-10);
     INFO("θ0 = " << theta0 << ": period " << period << ", relative error " << (period - exact) / exact);
     // dopri5 at 1e-13 over one period: the crossing time is good to ~1e-12
     // relative; 1e-8 is the issue's bar.
@@ -59,8 +69,15 @@ TEST_CASE("with just enough energy the arm passes over the top; with just too li
   for (double excess : {1e-6, -1e-6}) {
     A x{-pi / 2, std::sqrt(2 * top * (1 + excess) / I)};  // hanging, with the rate for that energy
     double max_phi = x[0];
+    test::consistency c;
     odeint::integrate_const(odeint::make_dense_output(1e-13, 1e-13, odeint::runge_kutta_dopri5<A>()), arm, x, 0.0,
-                            10.0, 1e-3, [&](const A& s, double) { max_phi = std::max(max_phi, s[0]); });
+                            10.0, 1e-3, [&](const A& s, double t) {
+                              max_phi = std::max(max_phi, s[0]);
+                              if (int(t * 1000 + 0.5) % 100 == 0) c.sample(arm, t, s);
+                            });
+    CHECK(c.orthogonality <= 1e-12);
+    CHECK(c.residual <= 1e-9);
+    CHECK(c.algorithms <= 1e-10);
     INFO("energy excess " << excess << ": largest φ " << max_phi);
     if (excess > 0) CHECK(max_phi > 3 * pi / 2);   // past upright (φ = π/2) and on around
     else CHECK(max_phi < pi / 2);                  // turns back before upright
@@ -92,6 +109,16 @@ TEST_CASE("released 1e-9 rad from upright, double and long double fall together"
     }
   };
   const double td = fall_time(0.0, 1e-14), tl = fall_time(0.0L, 1e-18L);
+  {
+    // Consistency along the double fall.
+    test::consistency c;
+    A x{phi0, 0.0};
+    odeint::integrate_const(odeint::make_dense_output(1e-14, 1e-14, odeint::runge_kutta_dopri5<A>()), arm, x, 0.0, td,
+                            td / 20, [&](const A& s, double t) { c.sample(arm, t, s); });
+    CHECK(c.orthogonality <= 1e-12);
+    CHECK(c.residual <= 1e-9);
+    CHECK(c.algorithms <= 1e-10);
+  }
   const double lambda = std::sqrt(P.m * P.g * P.d / (P.Jz + P.m * P.d * P.d));
   INFO("fall time double " << td << ", long double " << tl << ", relative difference " << (td - tl) / tl
                             << ", linearised estimate " << std::log(2.0 / 1e-9) / lambda);
@@ -124,6 +151,12 @@ TEST_CASE("a rotor spun through 10⁴ revolutions keeps its energy and its cut f
   // derivative is exactly 0, so RK4 adds only rounding to the angle (10⁶ steps
   // of ulp(6.3e4) ≈ 7e-12 each, at worst 1e-5 in all). Energy and the
   // centripetal force m·d·ω² depend on φ̇ alone: no loss from the huge angle.
+  test::consistency c;
+  c.sample(rotor, T, x);
+  INFO("after 1e4 revolutions: orthogonality " << c.orthogonality << ", residual " << c.residual);
+  CHECK(c.orthogonality <= 1e-12);
+  CHECK(c.residual <= 1e-9);
+  CHECK(c.algorithms <= 1e-10);
   CHECK(std::abs(x[0] - w * T) <= 1e-5);
   CHECK(std::abs(sol.energy() - e0) <= 1e-14 * e0);
   CHECK(std::abs(force - 1.0 * 0.5 * w * w) <= 1e-12 * force);
@@ -187,6 +220,7 @@ TEST_CASE("a chaotic double pendulum conserves energy and follows the long-doubl
   L xl{2.0L, 2.5L, 0.0L, 0.0L};
   const double e0 = recover(dp, 0.0, x).energy();
   double worst_energy = 0, first_divergence = -1;
+  test::consistency c;
   auto st = odeint::make_dense_output(1e-13, 1e-13, odeint::runge_kutta_dopri5<X>());
   auto stl = odeint::make_dense_output<odeint::runge_kutta_dopri5<L, long double>>(1e-18L, 1e-18L);
   st.initialize(x, 0.0, 1e-4);
@@ -198,6 +232,7 @@ TEST_CASE("a chaotic double pendulum conserves energy and follows the long-doubl
     st.calc_state(t, x);
     stl.calc_state(t, xl);
     worst_energy = std::max(worst_energy, std::abs(recover(dp, t, x).energy() - e0) / std::abs(e0));
+    if (k % 50 == 0) c.sample(dp, t, x);
     double diff = 0;
     for (int i = 0; i < 2; ++i) diff = std::max(diff, std::abs(x[i] - static_cast<double>(xl[i])));
     if (diff > 1e-3 && first_divergence < 0) first_divergence = t;
@@ -205,7 +240,37 @@ TEST_CASE("a chaotic double pendulum conserves energy and follows the long-doubl
   INFO("worst relative energy error " << worst_energy << "; double leaves the long-double solve (by 1e-3 rad) at t = "
                                       << first_divergence);
   CHECK(worst_energy < 1e-10);
+  CHECK(c.orthogonality <= 1e-12);
+  CHECK(c.residual <= 1e-9);
+  CHECK(c.algorithms <= 1e-10);
   // Errors of ~1e-13 grow like e^{λt}; with λ of a few 1/s they reach 1e-3 rad
   // after ln(1e10)/λ ≈ 5–10 s. Agreement is required up to 4 s.
   CHECK((first_divergence < 0 || first_divergence > 4.0));
+}
+
+TEST_CASE("the free arm over 10⁴ periods: energy drift stays bounded with dopri5 at 1e-10", "[hard]") {
+  const auto arm = models::robot_arm(P);
+  const double I = P.Jz + P.m * P.d * P.d, theta0 = 1.0;
+  const double period = 4 * std::sqrt(I / (P.m * P.g * P.d)) * boost::math::ellint_1(std::sin(theta0 / 2));
+  A x{theta0 - pi / 2, 0.0};
+  const double e0 = recover(arm, 0.0, x).energy(), scale = 2 * P.m * P.g * P.d;
+  budget b;
+  test::consistency c;
+  double worst = 0;
+  const double T = 1e4 * period;
+  const std::size_t steps = odeint::integrate_const(
+      odeint::make_dense_output(1e-10, 1e-10, odeint::runge_kutta_dopri5<A>()), checked(arm, b), x, 0.0, T,
+      100 * period, [&](const A& s, double t) {
+        worst = std::max(worst, std::abs(recover(arm, t, s).energy() - e0) / scale);
+        c.sample(arm, t, s);
+      });
+  INFO(steps << " steps, " << b.rhs_evals << " evaluations over " << T << " s; worst energy drift " << worst
+             << " of 2·m·g·d");
+  // dopri5 is not symplectic: its energy error random-walks or drifts with
+  // the local errors, each ≤ 1e-10 (tolerance) per step; over ~10⁶ steps a
+  // linear drift would stay below 1e-10 × steps × the energy scale.
+  CHECK(worst <= 1e-10 * double(b.rhs_evals) / 6);
+  CHECK(c.orthogonality <= 1e-12);
+  CHECK(c.residual <= 1e-9);
+  CHECK(c.algorithms <= 1e-10);
 }

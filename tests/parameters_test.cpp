@@ -46,5 +46,22 @@ TEST_CASE("a massless end body gives a singular mass matrix, reported with time 
   std::array<double, 2> x{0.25, -1.5}, dx;
   CHECK_THROWS_AS(arm(x, dx, 2.5), simulation_error);
   CHECK_THROWS_WITH(arm(x, dx, 2.5), Contains("singular mass matrix") && Contains("t = 2.5") &&
-                                         Contains("q = [0.25]") && Contains("-1.5"));
+                                         Contains("q = [0.25]") && Contains("-1.5") && Contains("joint \"joint\""));
+}
+
+TEST_CASE("a massless link in the middle of a chain names its joint") {
+  // A 2-link chain whose first link carries nothing: its joint still moves the
+  // second link, so M is regular; with the second link massless too, the
+  // second joint moves nothing and is named.
+  models::chain_params<2> p;
+  for (int i = 0; i < 2; ++i) {
+    p.axis[i] = Vec3d::UnitZ();
+    p.d[i] = Vec3d(0.5, 0, 0);
+    p.m[i] = 0.0;
+    p.J[i] = Mat3d::Zero();
+  }
+  p.m[0] = 1.0;
+  const auto chain = models::chain<2, models::planar_axes>(p);
+  std::array<double, 4> x{0.1, 0.2, 0.0, 0.0}, dx;
+  CHECK_THROWS_WITH(chain(x, dx, 0.0), Contains("joint \"j1\" (q[1])"));
 }

@@ -239,14 +239,15 @@ void composite_rigid_body(const S& scene, const X& xf, const ne_workspace_t<S, T
 }
 
 /// Solves M·a = r for a symmetric positive-definite M by an unrolled LDLᵀ
-/// factorisation (no square roots). Returns false if a pivot is not positive.
+/// factorisation (no square roots). Returns −1, or the index of the first
+/// pivot that is not positive (the joint that moves nothing with inertia).
 template <int N, class T, class MM>
-bool solve_spd(MM& M, const T* r, T* a) {
+int solve_spd(MM& M, const T* r, T* a) {
   std::array<T, N> d, inv_d;
   for (int j = 0; j < N; ++j) {
     T dj = M(j, j);
     for (int k = 0; k < j; ++k) dj -= M(j, k) * M(j, k) * d[k];
-    if (!(dj > T(0))) return false;
+    if (!(dj > T(0))) return j;
     d[j] = dj;
     inv_d[j] = T(1) / dj;
     for (int i = j + 1; i < N; ++i) {
@@ -265,7 +266,7 @@ bool solve_spd(MM& M, const T* r, T* a) {
     for (int k = i + 1; k < N; ++k) v -= M(k, i) * a[k];
     a[i] = v;
   }
-  return true;
+  return -1;
 }
 
 /// Generalised joint forces from joint inputs (a Prismatic's f).
@@ -282,10 +283,19 @@ void joint_inputs(const S& scene, const T& t, const joint_state<T>& x, T* tau) {
 }  // namespace detail
 
 namespace detail {
-template <class T>
-[[noreturn, gnu::cold, gnu::noinline]] void singular_mass_matrix(const T& t, const T* q, const T* qd, int n) {
+/// The name of the joint whose coordinate is q[i].
+template <class S>
+constexpr std::string_view joint_name(int i) {
+  for (int c = 0; c < S::n_components; ++c)
+    if (S::tree.q_index[c] == i) return S::table.names[c];
+  return "?";
+}
+template <class S, class T>
+[[noreturn, gnu::cold, gnu::noinline]] void singular_mass_matrix(int pivot, const T& t, const T* q, const T* qd,
+                                                                int n) {
   throw simulation_error(concat("flange: singular mass matrix at t = ", static_cast<double>(t), ", ",
-                                describe_state(q, qd, n), "; some joint moves nothing with mass or inertia"),
+                                describe_state(q, qd, n), ": joint \"", joint_name<S>(pivot), "\" (q[", pivot,
+                                "]) moves nothing with mass or inertia"),
                          static_cast<double>(t));
 }
 }  // namespace detail
@@ -306,8 +316,8 @@ void accelerations_newton_euler(const S& scene, const T& t, const T* q, const T*
   detail::composite_rigid_body<S, T>(scene, xf, lk, M);
   std::array<T, N> r;
   for (int i = 0; i < N; ++i) r[i] = tau[i] - b[i];
-  if (!detail::solve_spd<N>(M, r.data(), qdd)) [[unlikely]]
-    detail::singular_mass_matrix(t, q, qd, N);
+  if (const int pivot = detail::solve_spd<N>(M, r.data(), qdd); pivot >= 0) [[unlikely]]
+    detail::singular_mass_matrix<S>(pivot, t, q, qd, N);
 }
 
 /// The mass matrix M(q) (for tests and users who want it).
