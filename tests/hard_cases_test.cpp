@@ -63,7 +63,7 @@ TEST_CASE("a large-amplitude swing has the exact period 4·sqrt(I/(m g d))·K(si
   }
 }
 
-TEST_CASE("with just enough energy the arm passes over the top; with just too little it does not", "[hard]") {
+TEST_CASE("with just enough energy the arm passes over the top, with just too little it does not", "[hard]") {
   const auto arm = models::robot_arm(P);
   const double I = P.Jz + P.m * P.d * P.d, top = 2 * P.m * P.g * P.d;  // energy needed from hanging to upright
   for (double excess : {1e-6, -1e-6}) {
