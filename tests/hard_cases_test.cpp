@@ -126,9 +126,9 @@ TEST_CASE("released 1e-9 rad from upright, double and long double fall together"
   // 1e-14 (the tolerance) against a deviation of 1e-9: a relative error of
   // ~1e-5 in the deviation, which shifts the fall time by ~1e-5/λ (~1e-6
   // relative). The long-double solve (1e-18) has no such floor. So the two
-  // agree to 1e-5 relative, and both sit near the linearised estimate
-  // ln(2/ε)/λ (within 10%: the nonlinear end of the fall).
-  CHECK(std::abs(td - tl) <= 1e-5 * tl);
+  // agree to 1e-6 relative (measured: 6e-8), and both sit near the
+  // linearised estimate ln(2/ε)/λ (within 10%: the nonlinear end of the fall).
+  CHECK(std::abs(td - tl) <= 1e-6 * tl);
   CHECK(std::abs(td * lambda / std::log(2.0 / 1e-9) - 1) < 0.1);
 }
 
