@@ -69,3 +69,21 @@ TEST_CASE("the articulated-body algorithm agrees on the paper's scenes") {
     CHECK(std::abs(aba[1] - dx[3]) <= 1e-12 * scale);
   }
 }
+
+TEST_CASE("the crane's mass matrix is the paper's: [[m+M, -m d sin φ], [-m d sin φ, m d²]]") {
+  // The paper's reduced equations (m+M)·s̈ − (m d sin φ)·φ̈ = … and, times m·d,
+  // (−m d sin φ)·s̈ + m d²·φ̈ = …: a symmetric mass matrix with these entries.
+  std::mt19937 rng(4);
+  for (int k = 0; k < 50; ++k) {
+    const auto p = test::crane_params(rng);
+    const auto crane = models::gantry_crane(p);
+    const std::array<double, 2> q{test::uniform(rng, -3, 3), test::uniform(rng, -4, 4)};
+    const auto M = mass_matrix(crane, q.data());
+    const double s = std::sin(q[1]);
+    const double scale = p.m + p.M + p.m * p.d * p.d;
+    CHECK(std::abs(M(0, 0) - (p.m + p.M)) <= 1e-13 * scale);
+    CHECK(std::abs(M(0, 1) + p.m * p.d * s) <= 1e-13 * scale);
+    CHECK(std::abs(M(1, 0) - M(0, 1)) == 0.0);
+    CHECK(std::abs(M(1, 1) - p.m * p.d * p.d) <= 1e-13 * scale);
+  }
+}
