@@ -22,22 +22,34 @@
 
 namespace flange {
 
+/// What a rosenbrock4 run cost. Each step attempt, accepted or rejected,
+/// evaluates one Jacobian, so rejected = jacobian_evals − steps.
+struct stiff_stats {
+  long rhs_evals = 0;
+  long jacobian_evals = 0;
+  long steps = 0;
+};
+
 /// Integrates x from t0 to t1 with rosenbrock4; observer(x, t) is called at
-/// every step, or every observe_dt when observe_dt > 0. Returns the step count.
+/// every step, or every observe_dt when observe_dt > 0. Returns the step count;
+/// stats, if given, receives the evaluation counts.
 template <class S, class State, class Observer = std::nullptr_t>
 std::size_t integrate_rosenbrock4(const S& scene, State& x, double t0, double t1, double dt, double abs_tol,
-                                  double rel_tol, Observer observer = nullptr, double observe_dt = 0) {
+                                  double rel_tol, Observer observer = nullptr, double observe_dt = 0,
+                                  stiff_stats* stats = nullptr) {
   constexpr int n = S::n_state;  // the augmented state is (x, τ): n + 1
   struct context {
     const S* scene;
     Observer* observer;
     std::exception_ptr error;
-  } ctx{&scene, &observer, nullptr};
+    stiff_stats counts;
+  } ctx{&scene, &observer, nullptr, {}};
   flange_stiff_callbacks cb{};
   cb.context = &ctx;
   cb.n = n + 1;
   cb.f = [](void* c, const double* xs, double* d, double) {
     auto& k = *static_cast<context*>(c);
+    ++k.counts.rhs_evals;
     try {
       std::array<double, n> a, b;
       std::copy_n(xs, n, a.begin());
@@ -51,6 +63,7 @@ std::size_t integrate_rosenbrock4(const S& scene, State& x, double t0, double t1
   };
   cb.jacobian = [](void* c, const double* xs, double* J, double* dfdt, double) {
     auto& k = *static_cast<context*>(c);
+    ++k.counts.jacobian_evals;
     try {
       std::array<double, n> a;
       std::copy_n(xs, n, a.begin());
@@ -85,6 +98,10 @@ std::size_t integrate_rosenbrock4(const S& scene, State& x, double t0, double t1
     throw simulation_error("flange: rosenbrock4 failed", t0);
   }
   std::copy_n(xs.begin(), n, x.begin());
+  if (stats) {
+    *stats = ctx.counts;
+    stats->steps = steps;
+  }
   return static_cast<std::size_t>(steps);
 }
 
