@@ -71,6 +71,19 @@ void recover_all(benchmark::State& st, const Scene& sc, std::array<double, N> x)
   }
 }
 
+/// The Jacobian ∂f/∂x (with ∂f/∂t) a stiff stepper needs: exact by dual
+/// numbers, or by central differences.
+template <bool Exact, class Scene, std::size_t N>
+void jacobian_eval(benchmark::State& st, const Scene& sc, std::array<double, N> x) {
+  Eigen::Matrix<double, int(N), 1> ft;
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(x);
+    auto J = Exact ? jacobian(sc, 0.0, x, &ft) : jacobian_finite_difference(sc, 0.0, x, &ft);
+    benchmark::DoNotOptimize(J);
+    benchmark::DoNotOptimize(ft);
+  }
+}
+
 template <int N, template <int> class Axes, bool ABA>
 void chain_derivative(benchmark::State& st) {
   std::mt19937 rng(1);
@@ -142,6 +155,11 @@ void register_all() {
   reg("robot_arm/recover/all_variables", [](benchmark::State& s) { recover_all(s, arm, arm_x); });
   reg("gantry_crane/residual/125_equations", [](benchmark::State& s) { residual_eval(s, crane, crane_x); });
   reg("gantry_crane/recover/all_variables", [](benchmark::State& s) { recover_all(s, crane, crane_x); });
+  reg("robot_arm/jacobian/dual", [](benchmark::State& s) { jacobian_eval<true>(s, arm, arm_x); });
+  reg("robot_arm/jacobian/finite_difference", [](benchmark::State& s) { jacobian_eval<false>(s, arm, arm_x); });
+  reg("gantry_crane/jacobian/dual", [](benchmark::State& s) { jacobian_eval<true>(s, crane, crane_x); });
+  reg("gantry_crane/jacobian/finite_difference",
+      [](benchmark::State& s) { jacobian_eval<false>(s, crane, crane_x); });
   reg("chain2_planar/derivative/newton_euler", chain_derivative<2, models::planar_axes, false>);
   reg("chain2_planar/derivative/articulated_body", chain_derivative<2, models::planar_axes, true>);
   reg("chain4_spatial/derivative/newton_euler", chain_derivative<4, models::runtime_axes, false>);
@@ -184,6 +202,8 @@ int main(int argc, char** argv) {
   for (const char* scene : {"chain2_planar", "chain4_spatial", "chain8_spatial"})
     ratio("algorithm", scene, "derivative", "newton_euler", "articulated_body");
   ratio("overhead", "robot_arm", "rk4_step_array", "checked", "generated");
+  for (const char* scene : {"robot_arm", "gantry_crane"})
+    ratio("jacobian", scene, "jacobian", "dual", "finite_difference");
   for (const auto& [name, ns] : rep.ns)
     if (name.find("/residual/") != std::string::npos || name.find("/recover/") != std::string::npos)
       std::printf("cost %s = %.1f ns (median)\n", name.c_str(), ns);

@@ -39,7 +39,7 @@ TEST_CASE("the long-double reference is within its own error estimate of the exa
   const auto ref = study::long_double_reference(s, x0, T);
   const double actual = study::scaled_error(ref.x, exact(T));
   INFO("actual " << actual << ", estimate " << ref.error_estimate);
-  // The estimate (the 1e-15 solve against the 1e-17 one) bounds the 1e-17
+  // The estimate (the 1e-17 solve against the 1e-18 one) bounds the 1e-18
   // solve's error, and both are far below the 1e-12 a double solve can reach.
   CHECK(actual <= ref.error_estimate);
   CHECK(ref.error_estimate < 1e-13);

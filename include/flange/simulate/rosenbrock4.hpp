@@ -22,6 +22,12 @@
 
 namespace flange {
 
+/// How integrate_rosenbrock4 gets its Jacobian.
+namespace jacobian_method {
+struct exact {};              ///< dual numbers: one evaluation, exact to round-off (the default)
+struct finite_difference {};  ///< central differences, for comparison: 2·(n + 1) evaluations for n states
+}  // namespace jacobian_method
+
 /// What a rosenbrock4 run cost. Each step attempt, accepted or rejected,
 /// evaluates one Jacobian, so rejected = jacobian_evals − steps.
 struct stiff_stats {
@@ -32,8 +38,11 @@ struct stiff_stats {
 
 /// Integrates x from t0 to t1 with rosenbrock4; observer(x, t) is called at
 /// every step, or every observe_dt when observe_dt > 0. Returns the step count;
-/// stats, if given, receives the evaluation counts.
-template <class S, class State, class Observer = std::nullptr_t>
+/// stats, if given, receives the evaluation counts (the derivative
+/// evaluations inside a finite-difference Jacobian are not among rhs_evals).
+/// integrate_rosenbrock4<jacobian_method::finite_difference>(…) swaps the
+/// exact Jacobian for central differences.
+template <class Method = jacobian_method::exact, class S, class State, class Observer = std::nullptr_t>
 std::size_t integrate_rosenbrock4(const S& scene, State& x, double t0, double t1, double dt, double abs_tol,
                                   double rel_tol, Observer observer = nullptr, double observe_dt = 0,
                                   stiff_stats* stats = nullptr) {
@@ -68,7 +77,11 @@ std::size_t integrate_rosenbrock4(const S& scene, State& x, double t0, double t1
       std::array<double, n> a;
       std::copy_n(xs, n, a.begin());
       Eigen::Matrix<double, n, 1> ft;
-      const auto Je = jacobian(*k.scene, xs[n], a, &ft);
+      const auto Je = [&] {
+        if constexpr (std::is_same_v<Method, jacobian_method::finite_difference>)
+          return jacobian_finite_difference(*k.scene, xs[n], a, &ft);
+        else return jacobian(*k.scene, xs[n], a, &ft);
+      }();
       constexpr int m = n + 1;
       for (int i = 0; i < n; ++i) {
         for (int j = 0; j < n; ++j) J[i * m + j] = Je(i, j);

@@ -98,7 +98,7 @@ cost integrate_fixed(Stepper stepper, const Sys& sys, State& x, T t0, T t1, long
 
 /// A reference solution in long double and an estimate of its own error:
 /// fehlberg78 at tolerance `tight` gives x; a second solve at `loose`
-/// (100× looser by default) differs from it by about the looser solve's error,
+/// (10× looser by default) differs from it by about the looser solve's error,
 /// an upper bound on the tighter one's, reported as error_estimate.
 struct reference {
   std::vector<long double> x;
@@ -106,8 +106,8 @@ struct reference {
   long rhs_evals;
 };
 template <class S, class X>
-reference long_double_reference(const S& scene, const X& x0, double t1, long double tight = 1e-17L,
-                                long double loose = 1e-15L) {
+reference long_double_reference(const S& scene, const X& x0, double t1, long double tight = 1e-18L,
+                                long double loose = 1e-17L) {
   using L = std::array<long double, std::tuple_size_v<X>>;
   auto solve = [&](long double tol, long& evals) {
     L x;

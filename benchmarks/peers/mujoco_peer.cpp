@@ -1,0 +1,144 @@
+// MuJoCo on the paper's robot arm and gantry crane, measured the way
+// benchmarks/work_precision.cpp measures flange: the scaled error at T against
+// flange's long-double reference, and the median wall time per simulated
+// second, over a sweep of time steps for each of MuJoCo's integrators.
+//
+//   mujoco_peer --reference FILE [--quick] [--scene NAME]
+//
+// The models match flange's (peer_common.hpp): a hinge about z and a slide
+// along x, the inertial properties at the same places, gravity along −y,
+// armature and damping 0, contacts and every constraint off. The motor torque
+// and the cart force are actuators whose controls are set in mjcb_control, so
+// an input would be seen at every RK4 stage; both inputs are 0 here, as in
+// flange's study.
+//
+// One difference remains: MuJoCo refuses a moving body without rotational
+// inertia ("mass and inertia of moving bodies must be larger than mjMINVAL"),
+// so the crane's point-mass load gets 1e-14 kg m², which changes the
+// pendulum's inertia m·d² = 0.5 kg m² by 2e-14 relative: below every error
+// measured here.
+//
+// MuJoCo's integrators: RK4 (4 evaluations a step), semi-implicit Euler and
+// implicit-in-velocity Euler (1 each). All are fixed-step.
+#include <mujoco/mujoco.h>
+
+#include <cstring>
+#include <iostream>
+#include <memory>
+
+#include "peer_common.hpp"
+
+namespace {
+
+std::string arm_xml() {
+  std::ostringstream x;
+  x << "<mujoco model='robot_arm'><compiler angle='radian'/>"
+    << "<option gravity='0 " << -peer::g << " 0'><flag contact='disable' constraint='disable'/></option>"
+    << "<worldbody><body name='arm'>"
+    << "<joint name='joint' type='hinge' axis='0 0 1' armature='0' damping='0' limited='false'/>"
+    << "<inertial pos='" << peer::arm_d << " 0 0' mass='" << peer::arm_m << "' diaginertia='" << peer::arm_Jx << ' '
+    << peer::arm_Jz << ' ' << peer::arm_Jz << "'/>"
+    << "</body></worldbody>"
+    << "<actuator><motor name='motor' joint='joint' gear='1'/></actuator></mujoco>";
+  return x.str();
+}
+
+std::string crane_xml() {
+  std::ostringstream x;
+  x << "<mujoco model='gantry_crane'><compiler angle='radian'/>"
+    << "<option gravity='0 " << -peer::g << " 0'><flag contact='disable' constraint='disable'/></option>"
+    << "<worldbody><body name='cart'>"
+    << "<joint name='rail' type='slide' axis='1 0 0' armature='0' damping='0' limited='false'/>"
+    << "<inertial pos='0 0 0' mass='" << peer::crane_M << "' diaginertia='" << 0.1 * peer::crane_M << ' '
+    << 0.1 * peer::crane_M << ' ' << 0.1 * peer::crane_M << "'/>"
+    << "<body name='load'>"
+    << "<joint name='pivot' type='hinge' axis='0 0 1' armature='0' damping='0' limited='false'/>"
+    << "<inertial pos='" << peer::crane_d << " 0 0' mass='" << peer::crane_m << "' diaginertia='1e-14 1e-14 1e-14'/>"
+    << "</body></body></worldbody>"
+    << "<actuator><motor name='force' joint='rail' gear='1'/></actuator></mujoco>";
+  return x.str();
+}
+
+mjModel* load(const std::string& xml) {
+  auto vfs = std::make_unique<mjVFS>();  // large: keep it off the stack
+  mj_defaultVFS(vfs.get());
+  if (mj_makeEmptyFileVFS(vfs.get(), "scene.xml", static_cast<int>(xml.size())) != 0) return nullptr;
+  std::memcpy(vfs->filedata[vfs->nfile - 1], xml.data(), xml.size());
+  char err[1000] = "";
+  mjModel* m = mj_loadXML("scene.xml", vfs.get(), err, sizeof err);
+  if (!m) std::printf("mujoco: %s\n", err);
+  mj_deleteVFS(vfs.get());
+  return m;
+}
+
+/// The inputs, set where MuJoCo reads them at every stage of a step.
+void control(const mjModel* m, mjData* d) {
+  for (int i = 0; i < m->nu; ++i) d->ctrl[i] = 0.0;  // the study's inputs are 0
+}
+
+void study(const std::string& name, const std::string& xml, const peer::reference& ref, bool quick) {
+  mjModel* m = load(xml);
+  if (!m) return;
+  mjData* d = mj_makeData(m);
+  const int nq = m->nq;
+  struct integrator {
+    const char* name;
+    int kind, evals_per_step;
+    double dt_max, dt_min;
+  };
+  const integrator integrators[] = {{"mujoco: RK4", mjINT_RK4, 4, 1e-1, 1e-4},
+                                    {"mujoco: semi-implicit Euler", mjINT_EULER, 1, 1e-2, 1e-5},
+                                    {"mujoco: implicit Euler", mjINT_IMPLICIT, 1, 1e-2, 1e-5}};
+  const double factor = quick ? 10.0 : std::sqrt(10.0);
+  for (const auto& in : integrators) {
+    m->opt.integrator = in.kind;
+    for (double dt = in.dt_max; dt >= in.dt_min * 0.999; dt /= factor) {
+      const long n = std::max(1L, std::lround(ref.T / dt));
+      m->opt.timestep = ref.T / n;
+      auto run = [&] {
+        mj_resetData(m, d);
+        for (int i = 0; i < nq; ++i) {
+          d->qpos[i] = ref.x0[i];
+          d->qvel[i] = ref.x0[nq + i];
+        }
+        for (long k = 0; k < n; ++k) mj_step(m, d);
+      };
+      run();
+      std::vector<double> x(2 * nq);
+      for (int i = 0; i < nq; ++i) {
+        x[i] = d->qpos[i];
+        x[nq + i] = d->qvel[i];
+      }
+      const double e = peer::scaled_error(x, ref.x);
+      if (!(e <= 1)) continue;  // diverged: left out, as flange's runs are
+      const double sec = peer::median_seconds(run, quick ? 3 : 5, quick ? 5e-4 : 3e-3) / ref.T;
+      peer::print_row(name, in.name, "dt", ref.T / n, e, sec, n * in.evals_per_step, n, 0);
+    }
+  }
+  mj_deleteData(d);
+  mj_deleteModel(m);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  peer::options o;
+  if (!peer::parse(argc, argv, o)) {
+    std::cerr << "usage: mujoco_peer --reference FILE [--quick] [--scene NAME]\n";
+    return 2;
+  }
+  std::printf("MuJoCo %s (Debian's libmujoco): RK4, semi-implicit and implicit Euler over a time-step sweep\n",
+              mj_versionString());
+  mjcb_control = control;
+  const auto refs = peer::read_references(o.reference, {{"robot_arm", 2}, {"gantry_crane", 4}});
+  for (const auto& [name, xml] : {std::pair{std::string("robot_arm"), arm_xml()}, {"gantry_crane", crane_xml()}}) {
+    if (!o.scene.empty() && o.scene != name) continue;
+    const auto r = refs.find(name);
+    if (r == refs.end()) {
+      std::printf("mujoco: no reference for %s in %s\n", name.c_str(), o.reference.c_str());
+      continue;
+    }
+    study(name, xml, r->second, o.quick);
+  }
+  return 0;
+}
