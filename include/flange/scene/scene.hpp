@@ -24,6 +24,7 @@
 #include <boost/hana/unpack.hpp>
 
 #include "flange/components/component.hpp"
+#include "flange/dynamics/forward_dynamics.hpp"
 #include "flange/dynamics/model.hpp"
 #include "flange/scene/connect.hpp"
 #include "flange/scene/diagnostics.hpp"
@@ -227,7 +228,8 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
   static constexpr int n_state = 2 * n_q;
   using state_type = std::array<double, n_state>;
 
-  /// ẋ = f(x, t): the Boost.Odeint system signature. Works for any container
+  /// ẋ = f(x, t): the Boost.Odeint system signature; q̈ by the algorithm the
+  /// scene's type calls for (dynamics/forward_dynamics.hpp). Works for any container
   /// with data() (std::array, Eigen fixed-size vectors) and scalar type.
   template <class State, class T>
   void operator()(const State& x, State& dxdt, const T t) const {
@@ -238,7 +240,7 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
     const V* xs = x.data();
     V* d = dxdt.data();
     for (int i = 0; i < n_q; ++i) d[i] = xs[n_q + i];
-    accelerations_newton_euler(*this, static_cast<V>(t), xs, xs + n_q, d + n_q);
+    accelerations(*this, static_cast<V>(t), xs, xs + n_q, d + n_q);
   }
 
  private:
