@@ -12,6 +12,14 @@
 //
 //   F₁ = m·(R₁·(v̇ − g) + ω̇ × r_CM + ω × (ω × r_CM))
 //   M₁ = J·ω̇ + ω × (J·ω) + r_CM × F₁
+//
+// Body<Name, cm::at_frame, inertia_kind::point>, or PointMass<Name>, is a mass
+// without rotational inertia (Modelica's PointMass): J = 0 by its type, and
+//
+//   M₁ = 0
+//
+// The body still has ω (its frame turns with whatever it is fixed to), so its
+// variables and its equation count are those of Body.
 #pragma once
 #include <boost/hana/tuple.hpp>
 
@@ -26,7 +34,12 @@ struct at_frame {};  ///< the centre of mass is at frame_a (the paper's Body)
 struct offset {};    ///< the centre of mass is at r_CM from frame_a
 }  // namespace cm
 
-template <fixed_string Name, class CM = cm::at_frame>
+namespace inertia_kind {
+struct full {};   ///< a rotational inertia J (the paper's Body)
+struct point {};  ///< no rotational inertia: a point mass
+}  // namespace inertia_kind
+
+template <fixed_string Name, class CM = cm::at_frame, class Inertia = inertia_kind::full>
 class Body {
  public:
   static constexpr auto name = Name;
@@ -36,6 +49,9 @@ class Body {
   static constexpr std::array<internal_decl, 2> internals{
       {{"v", expr::var_kind::vec}, {"ω", expr::var_kind::vec}}};
   static constexpr bool has_cm_offset = std::is_same_v<CM, cm::offset>;
+  static constexpr bool is_point = std::is_same_v<Inertia, inertia_kind::point>;
+  static_assert(!(is_point && has_cm_offset),
+                "flange: a point mass sits at its frame; attach it through a FixedTranslation instead of cm::offset");
 
   struct params {
     double m;
@@ -47,6 +63,10 @@ class Body {
     detail::require_finite(name.view(), "Body", "m (mass)", m_);
     if (m_ < 0) throw parameter_error(detail::concat("Body \"", name.view(), "\": mass m = ", m_, " is negative"));
     detail::require_inertia(name.view(), "Body", J_);
+    if (is_point && !J_.isZero(0.0))
+      throw parameter_error(detail::concat("Body \"", name.view(), "\": a point mass has no rotational inertia, but J = [",
+                                           J_.row(0), "; ", J_.row(1), "; ", J_.row(2),
+                                           "] was given; leave J out, or make it a Body with inertia_kind::full"));
     detail::require_finite(name.view(), "Body", "r_cm", r_cm_);
     if (!has_cm_offset && !r_cm_.isZero(0.0))
       throw parameter_error(detail::concat("Body \"", name.view(), "\": r_cm = [", r_cm_.transpose(),
@@ -65,7 +85,12 @@ class Body {
     using namespace expr;
     const param<double> m{m_, "m"};
     const param<Mat3d> J{J_, "J"};
-    if constexpr (!has_cm_offset) {
+    if constexpr (is_point) {
+      return boost::hana::make_tuple(eq(v, der(r_<0>)),                                 //
+                                     skew_eq(tilde(w), R_<0> * transpose(der(R_<0>))),  //
+                                     eq(F_<0>, R_<0> * m * (der(v) - gravity{})),       //
+                                     eq(M_<0>, zero<shape::vec>{}));
+    } else if constexpr (!has_cm_offset) {
       return boost::hana::make_tuple(eq(v, der(r_<0>)),                                    //
                                      skew_eq(tilde(w), R_<0> * transpose(der(R_<0>))),     //
                                      eq(F_<0>, R_<0> * m * (der(v) - gravity{})),          //
@@ -91,10 +116,14 @@ class Body {
   /// motion of frame_a: the right-hand sides of the equations above.
   template <class T>
   [[nodiscard]] wrench<T> flows(const frame_kinematics<T>& k, const Vec3<T>& g) const {
-    const Mat3<T> J = J_.cast<T>();
-    const Vec3<T> c = r_cm_.cast<T>();
-    const Vec3<T> F = T(m_) * (k.R * (k.a - g) + k.wd.cross(c) + k.w.cross(k.w.cross(c)));
-    return {F, J * k.wd + k.w.cross(J * k.w) + c.cross(F)};
+    if constexpr (is_point) {
+      return {T(m_) * (k.R * (k.a - g)), Vec3<T>::Zero()};
+    } else {
+      const Mat3<T> J = J_.cast<T>();
+      const Vec3<T> c = r_cm_.cast<T>();
+      const Vec3<T> F = T(m_) * (k.R * (k.a - g) + k.wd.cross(c) + k.w.cross(k.w.cross(c)));
+      return {F, J * k.wd + k.w.cross(J * k.w) + c.cross(F)};
+    }
   }
 
  private:
@@ -102,5 +131,9 @@ class Body {
   Mat3d J_;
   Vec3d r_cm_;
 };
+
+/// A point mass: Body without rotational inertia (Modelica's PointMass).
+template <fixed_string Name>
+using PointMass = Body<Name, cm::at_frame, inertia_kind::point>;
 
 }  // namespace flange

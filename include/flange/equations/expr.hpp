@@ -353,23 +353,27 @@ struct tilde_node : node {
   }
 };
 
-template <class A, bool IsSin>
-struct trig_node : node {
-  static_assert(A::sh == shape::scalar, "flange: sin() and cos() take a scalar");
+enum class function { sin, cos, tanh };
+
+template <class A, function Fn>
+struct function_node : node {
+  static_assert(A::sh == shape::scalar, "flange: sin(), cos() and tanh() take a scalar");
   static constexpr shape sh = shape::scalar;
   static constexpr int prec = prec_atom;
   A a;
-  explicit trig_node(A x) : a(std::move(x)) {}
+  explicit function_node(A x) : a(std::move(x)) {}
   template <class C>
   auto eval(const C& c) const {
     using std::cos;
     using std::sin;
-    if constexpr (IsSin) return sin(a.eval(c));
-    else return cos(a.eval(c));
+    using std::tanh;
+    if constexpr (Fn == function::sin) return sin(a.eval(c));
+    else if constexpr (Fn == function::cos) return cos(a.eval(c));
+    else return tanh(a.eval(c));
   }
   template <class P>
   void print(std::ostream& os, const P& p) const {
-    os << (IsSin ? "sin(" : "cos(");
+    os << (Fn == function::sin ? "sin(" : Fn == function::cos ? "cos(" : "tanh(");
     a.print(os, p);
     os << ')';
   }
@@ -383,8 +387,9 @@ template <Expr A, Expr B> auto cross(A a, B b) { return binary<ops::cross_produc
 template <Expr A, Expr B> auto dot(A a, B b) { return binary<ops::dot_product, A, B>(std::move(a), std::move(b)); }
 template <Expr A> auto transpose(A a) { return transpose_node<A>(std::move(a)); }
 template <Expr A> auto tilde(A a) { return tilde_node<A>(std::move(a)); }
-template <Expr A> auto sin(A a) { return trig_node<A, true>(std::move(a)); }
-template <Expr A> auto cos(A a) { return trig_node<A, false>(std::move(a)); }
+template <Expr A> auto sin(A a) { return function_node<A, function::sin>(std::move(a)); }
+template <Expr A> auto cos(A a) { return function_node<A, function::cos>(std::move(a)); }
+template <Expr A> auto tanh(A a) { return function_node<A, function::tanh>(std::move(a)); }
 
 // ---------------------------------------------------------------- equations
 

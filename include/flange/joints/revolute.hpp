@@ -21,6 +21,15 @@
 //
 // (the joint's own torque on frame_b's side is −c·(φ − φ0) − d·φ̇). A scene
 // without it has no such arithmetic.
+//
+// Revolute<"elbow", axis::z, axis_law::friction> adds bearing friction: viscous
+// d plus Coulomb F_c, regularised (smooth) by tanh over a speed v_s, so the
+// stepper sees a smooth right-hand side and no stick-slip events:
+//
+//   M₂·n = d·φ̇ + F_c·tanh(φ̇ / v_s)
+//
+// Below |φ̇| ≈ v_s the joint creeps instead of sticking; choose v_s well below
+// the speeds that matter (default 1e-3 rad/s).
 #pragma once
 #include <boost/hana/tuple.hpp>
 
@@ -36,6 +45,7 @@ enum class joint_type { revolute, prismatic };
 namespace axis_law {
 struct none {};           ///< the paper's joint: no torque about the axis
 struct spring_damper {};  ///< linear spring and damper along the axis
+struct friction {};       ///< viscous plus regularised Coulomb friction along the axis
 }  // namespace axis_law
 
 namespace detail {
@@ -52,6 +62,13 @@ struct revolute_params<Axis, axis_law::spring_damper> {
   double d = 0;              ///< damping [N m s/rad]
   double phi0 = 0;           ///< rest angle [rad]
 };
+template <class Axis>
+struct revolute_params<Axis, axis_law::friction> {
+  Vec3d n = Vec3d::UnitZ();  ///< ignored for a compile-time axis
+  double d = 0;              ///< viscous friction [N m s/rad]
+  double f_c = 0;            ///< Coulomb friction torque [N m]
+  double v_s = 1e-3;         ///< regularisation speed [rad/s]: tanh(φ̇ / v_s)
+};
 }  // namespace detail
 
 template <fixed_string Name, class Axis = axis::any, class Law = axis_law::none>
@@ -66,7 +83,8 @@ class Revolute {
   static constexpr std::array<internal_decl, 2> internals{
       {{"φ", expr::var_kind::scalar}, {"R_rel", expr::var_kind::rot}}};
   static constexpr bool has_spring_damper = std::is_same_v<Law, axis_law::spring_damper>;
-  static constexpr bool has_input = has_spring_damper;
+  static constexpr bool has_friction = std::is_same_v<Law, axis_law::friction>;
+  static constexpr bool has_input = has_spring_damper || has_friction;
 
   using params = detail::revolute_params<Axis, Law>;
 
@@ -84,13 +102,33 @@ class Revolute {
       d_ = p.d;
       phi0_ = p.phi0;
     }
+    if constexpr (has_friction) {
+      for (auto [what, v] : {std::pair{"d (viscous friction)", p.d}, {"f_c (Coulomb friction)", p.f_c}, {"v_s", p.v_s}})
+        detail::require_finite(name.view(), "Revolute", what, v);
+      if (p.d < 0 || p.f_c < 0)
+        throw parameter_error(detail::concat("Revolute \"", name.view(), "\": friction d = ", p.d, ", f_c = ", p.f_c,
+                                             "; friction coefficients must not be negative"));
+      if (!(p.v_s > 0))
+        throw parameter_error(detail::concat("Revolute \"", name.view(), "\": friction v_s = ", p.v_s,
+                                             " must be positive (it is the speed over which tanh regularises Coulomb friction)"));
+      d_ = p.d;
+      fc_ = p.f_c;
+      inv_vs_ = 1 / p.v_s;
+    }
   }
 
-  /// The generalised force of the axis law on φ: −c·(φ − φ0) − d·φ̇.
+  /// The generalised force of the axis law on φ: −c·(φ − φ0) − d·φ̇, or
+  /// −d·φ̇ − F_c·tanh(φ̇ / v_s).
   template <class T>
   [[nodiscard]] T generalized_force(const T&, const joint_state<T>& x, int q) const {
-    if constexpr (has_spring_damper) return -T(c_) * (x.q(q) - T(phi0_)) - T(d_) * x.qd(q);
-    else return T(0);
+    if constexpr (has_spring_damper) {
+      return -T(c_) * (x.q(q) - T(phi0_)) - T(d_) * x.qd(q);
+    } else if constexpr (has_friction) {
+      using std::tanh;
+      return -T(d_) * x.qd(q) - T(fc_) * tanh(x.qd(q) * T(inv_vs_));
+    } else {
+      return T(0);
+    }
   }
 
   [[nodiscard]] const Vec3d& n() const { return n_; }
@@ -131,11 +169,14 @@ class Revolute {
     if constexpr (has_spring_damper)
       return eq(dot(M_<1>, n), param<double>{c_, "c"} * (phi - param<double>{phi0_, "φ0"}) +
                                    param<double>{d_, "d"} * der(phi));
+    else if constexpr (has_friction)
+      return eq(dot(M_<1>, n), param<double>{d_, "d"} * der(phi) +
+                                   param<double>{fc_, "F_c"} * tanh(der(phi) * param<double>{inv_vs_, "1/v_s"}));
     else return eq(zero<shape::scalar>{}, dot(M_<1>, n));
   }
 
   Vec3d n_;
-  double c_ = 0, d_ = 0, phi0_ = 0;
+  double c_ = 0, d_ = 0, phi0_ = 0, fc_ = 0, inv_vs_ = 0;
 };
 
 }  // namespace flange

@@ -85,6 +85,11 @@ struct dual {
     using std::sin;
     return chain(a, cos(a.v), -sin(a.v));
   }
+  friend dual tanh(const dual& a) {
+    using std::tanh;
+    const T th = tanh(a.v);
+    return chain(a, th, T(1) - th * th);
+  }
   friend dual sqrt(const dual& a) {
     using std::sqrt;
     const T s = sqrt(a.v);

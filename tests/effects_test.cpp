@@ -1,0 +1,143 @@
+// The effects a scene's type switches on or off: joint friction against closed
+// forms and through the residual, point masses, and every specialised variant
+// against its general form (the same numbers to round-off).
+#include <catch2/catch.hpp>
+#include <flange/flange.hpp>
+#include <flange/simulate/odeint.hpp>
+
+#include "random_params.hpp"
+
+using namespace flange;
+
+namespace {
+const Mat3d J = Vec3d(0.01, 0.02, 0.02).asDiagonal();
+constexpr double I = 0.02 + 1.0 * 0.25;  // J_z + m·l² about the joint
+
+/// The paper's arm with its axis law and gravity chosen by type.
+template <class Law, class Gravity = gravity_kind::uniform, class Axis = axis::z>
+auto arm(typename Revolute<"joint", Axis, Law>::params p) {
+  return scene(World<"world", Gravity>{}, Revolute<"joint", Axis, Law>(p), FixedTranslation<"rod">({.d = {0.5, 0, 0}}),
+               Body<"mass">({.m = 1.0, .J = J}), connect<"world.frame_b", "joint.frame_a">,
+               connect<"joint.frame_b", "rod.frame_a">, connect<"rod.frame_b", "mass.frame_a">);
+}
+
+template <class A, class B>
+double max_difference(const A& a, const B& b, std::mt19937& rng) {
+  using X = typename A::state_type;
+  double worst = 0;
+  for (int k = 0; k < 50; ++k) {
+    X x, da, db;
+    for (auto& v : x) v = test::uniform(rng, -3, 3);
+    a(x, da, 0.2);
+    b(x, db, 0.2);
+    for (std::size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(da[i] - db[i]) / (1 + std::abs(db[i])));
+  }
+  return worst;
+}
+}  // namespace
+
+TEST_CASE("viscous joint friction decays the rate exponentially") {
+  // No gravity: I·φ̈ = −d·φ̇, so φ̇ = φ̇0·e^{−d t / I}, φ = φ0 + φ̇0·I/d·(1 − e^{−d t / I}).
+  const double d = 0.05;
+  const auto s = arm<axis_law::friction, gravity_kind::none>({.d = d, .f_c = 0.0});
+  using X = decltype(s)::state_type;
+  X x{0.3, 2.0};
+  odeint::integrate_adaptive(odeint::make_controlled(1e-12, 1e-12, odeint::runge_kutta_dopri5<X>()), s, x, 0.0, 5.0, 1e-3);
+  const double e = std::exp(-d * 5.0 / I);
+  // dopri5 at 1e-12 over ~10² steps: global error well below 1e-9.
+  CHECK(std::abs(x[1] - 2.0 * e) < 1e-9);
+  CHECK(std::abs(x[0] - (0.3 + 2.0 * I / d * (1 - e))) < 1e-9);
+}
+
+TEST_CASE("Coulomb joint friction decelerates at the constant rate F_c / I") {
+  // With |φ̇| ≫ v_s, tanh(φ̇/v_s) = 1 to double precision (1 − 2e^{−2φ̇/v_s}),
+  // so φ̈ = −F_c / I exactly while φ̇ > 0.5: φ̇ = φ̇0 − (F_c/I)·t.
+  const double fc = 0.1;
+  const auto s = arm<axis_law::friction, gravity_kind::none>({.d = 0.0, .f_c = fc, .v_s = 1e-6});
+  using X = decltype(s)::state_type;
+  X x{0.0, 3.0};
+  const double T = 2.0;  // φ̇(T) = 3 − 0.37·2 ≈ 2.26
+  odeint::integrate_adaptive(odeint::make_controlled(1e-12, 1e-12, odeint::runge_kutta_dopri5<X>()), s, x, 0.0, T, 1e-3);
+  CHECK(std::abs(x[1] - (3.0 - fc / I * T)) < 1e-10);
+  CHECK(std::abs(x[0] - (3.0 * T - 0.5 * fc / I * T * T)) < 1e-10);
+}
+
+TEST_CASE("a friction pendulum loses exactly the energy its friction dissipates, and satisfies its residual") {
+  const double d = 0.02, fc = 0.05, vs = 1e-2;
+  const auto s = arm<axis_law::friction>({.d = d, .f_c = fc, .v_s = vs});
+  using X = decltype(s)::state_type;
+  // Integrate the dissipated power d·φ̇² + F_c·φ̇·tanh(φ̇/v_s) beside the state.
+  using Y = std::array<double, 3>;
+  auto augmented = [&](const Y& y, Y& dy, double t) {
+    X x{y[0], y[1]}, dx;
+    s(x, dx, t);
+    dy = {dx[0], dx[1], d * y[1] * y[1] + fc * y[1] * std::tanh(y[1] / vs)};
+  };
+  Y y{0.5, 0.0, 0.0};
+  const double E0 = recover(s, 0.0, X{y[0], y[1]}).energy();
+  double worst_residual = 0;
+  for (int k = 1; k <= 20; ++k) {
+    odeint::integrate_adaptive(odeint::make_controlled(1e-12, 1e-12, odeint::runge_kutta_dopri5<Y>()), augmented, y,
+                               0.25 * (k - 1), 0.25 * k, 1e-3);
+    worst_residual = std::max(worst_residual, scaled_residual(s, recover(s, 0.25 * k, X{y[0], y[1]})));
+  }
+  const double E = recover(s, 5.0, X{y[0], y[1]}).energy();
+  INFO("energy " << E0 << " -> " << E << ", dissipated " << y[2]);
+  CHECK(y[2] > 0.1);                                   // friction did real work
+  CHECK(std::abs(E0 - E - y[2]) < 1e-9 * std::abs(E0));  // power balance, to the integration error
+  CHECK(worst_residual < 1e-12);  // M₂·n = d·φ̇ + F_c·tanh(φ̇/v_s) holds on the recovered variables
+}
+
+TEST_CASE("friction parameters are checked at construction") {
+  CHECK_THROWS_WITH((Revolute<"knee", axis::z, axis_law::friction>({.d = -1.0})),
+                    Catch::Contains("Revolute \"knee\": friction d = -1") && Catch::Contains("must not be negative"));
+  CHECK_THROWS_WITH((Revolute<"knee", axis::z, axis_law::friction>({.f_c = 0.1, .v_s = 0.0})),
+                    Catch::Contains("Revolute \"knee\": friction v_s = 0 must be positive"));
+  CHECK_THROWS_WITH((Revolute<"knee", axis::z, axis_law::friction>({.f_c = std::nan("")})),
+                    Catch::Contains("Revolute \"knee\": parameter f_c (Coulomb friction) is not finite"));
+}
+
+TEST_CASE("a point mass is a body without rotational inertia") {
+  const auto body = models::gantry_crane();  // its load is Body<"load">({.m = 0.5}): J = 0 by value
+  const auto point = scene(World<"world">{}, Prismatic<"rail", axis::x>({}),
+                           Body<"cart">({.m = 1.0, .J = Mat3d::Identity() * 0.1}), Revolute<"pivot", axis::z>{},
+                           FixedTranslation<"rope">({.d = {1.0, 0, 0}}), PointMass<"load">({.m = 0.5}),
+                           connect<"world.frame_b", "rail.frame_a">, connect<"rail.frame_b", "cart.frame_a">,
+                           connect<"rail.frame_b", "pivot.frame_a">, connect<"pivot.frame_b", "rope.frame_a">,
+                           connect<"rope.frame_b", "load.frame_a">);
+  STATIC_REQUIRE(decltype(point)::n_equations == decltype(body)::n_equations);
+  std::mt19937 rng(3);
+  CHECK(max_difference(point, body, rng) == 0.0);  // the same link constants, the same arithmetic
+  const auto sol = recover(point, 0.0, std::array<double, 4>{0.1, -0.7, 0.4, 1.3});
+  CHECK(sol.cut_at("load.frame_a").n.norm() == 0.0);
+  CHECK(scaled_residual(point, sol) < 1e-14);
+  CHECK_THROWS_WITH(PointMass<"load">({.m = 0.5, .J = Mat3d::Identity()}),
+                    Catch::Contains("Body \"load\": a point mass has no rotational inertia"));
+}
+
+TEST_CASE("every specialised variant gives the numbers of its general form") {
+  std::mt19937 rng(5);
+  // Gravity removed by type against gravity zero by value.
+  CHECK(max_difference(arm<axis_law::none, gravity_kind::none>({}),
+                       scene(World<"world">({.g = Vec3d::Zero()}), Revolute<"joint", axis::z>{},
+                             FixedTranslation<"rod">({.d = {0.5, 0, 0}}), Body<"mass">({.m = 1.0, .J = J}),
+                             connect<"world.frame_b", "joint.frame_a">, connect<"joint.frame_b", "rod.frame_a">,
+                             connect<"rod.frame_b", "mass.frame_a">),
+                       rng) == 0.0);
+  // No axis law against a spring-damper and friction of zero.
+  const auto plain = arm<axis_law::none>({});
+  CHECK(max_difference(plain, arm<axis_law::spring_damper>({.c = 0.0, .d = 0.0}), rng) == 0.0);
+  CHECK(max_difference(plain, arm<axis_law::friction>({.d = 0.0, .f_c = 0.0}), rng) == 0.0);
+  // The axis z by type against z by value (2-D against 3-D rotations, and
+  // planar against spatial arithmetic): equal to round-off.
+  CHECK(max_difference(plain, arm<axis_law::none, gravity_kind::uniform, axis::any>({.n = Vec3d::UnitZ()}), rng) <
+        1e-14);
+  const auto crane = models::gantry_crane({}, 0.3);
+  const auto crane_any = scene(
+      World<"world">{}, Prismatic<"rail">({.n = Vec3d::UnitX(), .f = 0.3}), Body<"cart">({.m = 1.0, .J = Mat3d::Identity() * 0.1}),
+      Revolute<"pivot">({.n = Vec3d::UnitZ()}), FixedTranslation<"rope">({.d = {1.0, 0, 0}}), Body<"load">({.m = 0.5}),
+      connect<"world.frame_b", "rail.frame_a">, connect<"rail.frame_b", "cart.frame_a">,
+      connect<"rail.frame_b", "pivot.frame_a">, connect<"pivot.frame_b", "rope.frame_a">,
+      connect<"rope.frame_b", "load.frame_a">);
+  CHECK(max_difference(crane, crane_any, rng) < 1e-14);
+}
