@@ -243,28 +243,44 @@ void composite_rigid_body(const S& scene, const X& xf, const ne_workspace_t<S, T
 /// pivot that is not positive (the joint that moves nothing with inertia).
 template <int N, class T, class MM>
 int solve_spd(MM& M, const T* r, T* a) {
+  // Column by column: with v_k = L(j, k)·d_k for the row j in hand,
+  //   d_j = M(j, j) − Σ_k L(j, k)·v_k,   L(i, j) = (M(i, j) − Σ_k L(i, k)·v_k) / d_j,
+  // so each product L·D is formed once. The loop bounds are constants: the
+  // compiler unrolls them into straight-line code.
   std::array<T, N> d, inv_d;
+#pragma GCC unroll 16
   for (int j = 0; j < N; ++j) {
+    std::array<T, N> v;
     T dj = M(j, j);
-    for (int k = 0; k < j; ++k) dj -= M(j, k) * M(j, k) * d[k];
+#pragma GCC unroll 16
+    for (int k = 0; k < j; ++k) {
+      v[k] = M(j, k) * d[k];
+      dj -= M(j, k) * v[k];
+    }
     if (!(dj > T(0))) return j;
     d[j] = dj;
     inv_d[j] = T(1) / dj;
+#pragma GCC unroll 16
     for (int i = j + 1; i < N; ++i) {
-      T v = M(i, j);
-      for (int k = 0; k < j; ++k) v -= M(i, k) * M(j, k) * d[k];
-      M(i, j) = v * inv_d[j];  // L(i, j), stored below the diagonal
+      T x = M(i, j);
+#pragma GCC unroll 16
+      for (int k = 0; k < j; ++k) x -= M(i, k) * v[k];
+      M(i, j) = x * inv_d[j];  // L(i, j), stored below the diagonal
     }
   }
+#pragma GCC unroll 16
   for (int i = 0; i < N; ++i) {
-    T v = r[i];
-    for (int k = 0; k < i; ++k) v -= M(i, k) * a[k];
-    a[i] = v;
+    T x = r[i];
+#pragma GCC unroll 16
+    for (int k = 0; k < i; ++k) x -= M(i, k) * a[k];
+    a[i] = x;
   }
+#pragma GCC unroll 16
   for (int i = N - 1; i >= 0; --i) {
-    T v = a[i] * inv_d[i];
-    for (int k = i + 1; k < N; ++k) v -= M(k, i) * a[k];
-    a[i] = v;
+    T x = a[i] * inv_d[i];
+#pragma GCC unroll 16
+    for (int k = i + 1; k < N; ++k) x -= M(k, i) * a[k];
+    a[i] = x;
   }
   return -1;
 }

@@ -28,6 +28,15 @@ namespace flange {
 namespace detail {
 
 /// The plane's normal axis k if the scene is planar (see above), else −1.
+template <class S>
+constexpr bool t_is_revolute(int L) {
+  bool r = false;
+  [&]<int... I>(std::integer_sequence<int, I...>) {
+    ((I + 1 == L ? (r = link_info<S, I + 1>::joint_type::type == joint_type::revolute) : false), ...);
+  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+  return r;
+}
+
 template <class S, int L>
 constexpr std::pair<int, bool> link_axis() {  // (coordinate axis or −1, revolute)
   using J = typename link_info<S, L>::joint_type;
@@ -54,6 +63,33 @@ constexpr int planar_axis() {
     return k;
   }
 }
+
+/// What the planar algorithm knows of each link before any number is seen,
+/// beyond link_flags: whether the origin's acceleration in the bias pass is
+/// identically zero (no gravity reaches it and nothing above it turns), and
+/// whether the joint's rotation is used at all (if not, no sin or cos).
+template <class S>
+struct planar_flags {
+  static constexpr int NL = S::tree.n_links;
+  struct table {
+    std::array<bool, NL> ap_zero{};   ///< the parent origin's acceleration carried here is zero
+    std::array<bool, NL> a_zero{};    ///< this origin's acceleration is zero
+    std::array<bool, NL> need_rot{};  ///< the joint's 2-D rotation is used
+  };
+  static constexpr table value = [] {
+    constexpr auto F = link_flags<S>::value;
+    table t{};
+    t.a_zero[0] = !S::has_gravity;
+    for (int L = 1; L < NL; ++L) {
+      const int P = S::tree.link_parent[L];
+      const bool rev = S::tree.link_joint[L] >= 0 && t_is_revolute<S>(L);
+      t.ap_zero[L] = t.a_zero[P] && (F.p_zero[L] || (F.wd_zero[P] && F.w_zero[P]));
+      t.a_zero[L] = t.ap_zero[L] && (rev || F.w_zero[L]);
+      t.need_rot[L] = rev && (!t.ap_zero[L] || P != 0);
+    }
+    return t;
+  }();
+};
 
 template <class T>
 struct vec2 {
@@ -88,7 +124,7 @@ struct planar_joint {
   static constexpr int u = (K + 1) % 3, v = (K + 2) % 3;
   T c{1}, s{0}, q{0};
   explicit planar_joint(const T& qv) : q(qv) {
-    if constexpr (revolute) {
+    if constexpr (revolute && planar_flags<S>::value.need_rot[L]) {
       using std::cos;
       using std::sin;
       c = cos(qv);
@@ -117,6 +153,13 @@ struct planar_joint {
     else return sigma * f.v;
   }
 };
+
+/// acc += v, or acc = v when nothing has been summed yet.
+template <bool Has, class V>
+void accumulate(V& acc, const V& v) {
+  if constexpr (Has) acc += v;
+  else acc = v;
+}
 
 template <int K, class T>
 vec2<T> in_plane(const Vec3d& x) {
@@ -188,33 +231,42 @@ void accelerations_planar(const S& scene, const T& t, const T* q, const T* qd, T
     if constexpr (LI::has_offset) c.p = in_plane<K, T>(model.set_offset[LI::parent_set]);
     else c.p = {T(0), T(0)};
     if constexpr (!PJ::revolute) c.p += x.q * PJ::axis();
+    // Terms are summed only where the flags say they exist: adding a zero the
+    // compiler cannot see (IEEE: 0 + −0 = +0) would cost as much as any term.
+    constexpr auto PF = planar_flags<S>::value;
+    constexpr bool base = P == 0 ? S::has_gravity : !PF.a_zero[P];
+    constexpr bool t_wd = !F.p_zero[L] && !F.wd_zero[P], t_w = !F.p_zero[L] && !F.w_zero[P];
     vec2<T> ap;
-    if constexpr (P == 0) ap = minus_g;
-    else ap = pl.a;
-    if constexpr (!F.p_zero[L]) {
-      if constexpr (!F.wd_zero[P]) ap += perp(pl.wd, c.p);
-      if constexpr (!F.w_zero[P]) ap += (-pl.w * pl.w) * c.p;
+    if constexpr (base) {
+      if constexpr (P == 0) ap = minus_g;
+      else ap = pl.a;
     }
+    if constexpr (t_wd) accumulate<base>(ap, perp(pl.wd, c.p));
+    if constexpr (t_w) accumulate<base || t_wd>(ap, (-pl.w * pl.w) * c.p);
     if constexpr (PJ::revolute) {
       c.w = PJ::sigma * qdl;
       if constexpr (!F.w_zero[P]) c.w += pl.w;
       if constexpr (!F.wd_zero[P]) c.wd = pl.wd;
-      c.a = x.rot(ap);
+      if constexpr (!PF.a_zero[L]) c.a = x.rot(ap);
     } else {
       if constexpr (!F.w_zero[L]) c.w = pl.w;
       if constexpr (!F.wd_zero[L]) c.wd = pl.wd;
-      c.a = ap;
-      if constexpr (!F.w_zero[L]) c.a += perp(T(2) * c.w, qdl * PJ::axis());
+      if constexpr (!PF.ap_zero[L]) c.a = ap;
+      if constexpr (!F.w_zero[L]) accumulate<!PF.ap_zero[L]>(c.a, perp(T(2) * c.w, qdl * PJ::axis()));
     }
     const auto& I = model.link[L];
     const vec2<T> h = in_plane<K, T>(I.h);
+    // f = m·a + ω̇ × h − ω²·h and n = h × a + I_kk·ω̇ (zero where the flags say).
+    constexpr bool f_a = !PF.a_zero[L], f_wd = !F.wd_zero[L], f_w = !F.w_zero[L];
     if constexpr (F.need_f[L]) {
-      c.f = T(I.m) * c.a;
-      if constexpr (!F.wd_zero[L]) c.f += perp(c.wd, h);
-      if constexpr (!F.w_zero[L]) c.f += (-c.w * c.w) * h;
+      if constexpr (f_a) c.f = T(I.m) * c.a;
+      if constexpr (f_wd) accumulate<f_a>(c.f, perp(c.wd, h));
+      if constexpr (f_w) accumulate<f_a || f_wd>(c.f, (-c.w * c.w) * h);
+      if constexpr (!(f_a || f_wd || f_w)) c.f = {T(0), T(0)};
     }
-    c.n = cross2(h, c.a);
-    if constexpr (!F.wd_zero[L]) c.n += T(I.I(K, K)) * c.wd;
+    if constexpr (f_a) c.n = cross2(h, c.a);
+    if constexpr (f_wd) accumulate<f_a>(c.n, T(I.I(K, K)) * c.wd);
+    if constexpr (!(f_a || f_wd)) c.n = T(0);
     if constexpr (F.has_ext[L]) c.n -= n_ext[L];
   });
   std::array<T, N> r;

@@ -3,7 +3,9 @@
 //
 // Axes<I> chooses link I's joint axis type: axis::z for every link gives a
 // planar chain with compile-time axes; axis::any with run-time axes gives a
-// spatial chain.
+// spatial chain. The effects are types too: Law is every joint's axis law
+// (axis_law::spring_damper uses chain_params::stiffness and damping), Gravity the World's,
+// Inertia the bodies' (inertia_kind::point makes them point masses).
 #pragma once
 #include <array>
 #include <utility>
@@ -23,22 +25,34 @@ struct chain_params {
   std::array<double, N> m;
   std::array<Mat3d, N> J;
   Vec3d g = Vec3d(0, -9.81, 0);
+  double stiffness = 0, damping = 0;  ///< every joint's c and d, with axis_law::spring_damper
 };
 
 /// A chain of N links with joint axis type Axis<I>::type for link I.
-template <int N, template <int> class Axis>
+template <int N, template <int> class Axis, class Law = axis_law::none, class Gravity = gravity_kind::uniform,
+          class Inertia = inertia_kind::full>
 auto chain(const chain_params<N>& p) {
   return [&]<int... I, int... K>(std::integer_sequence<int, I...>, std::integer_sequence<int, K...>) {
     auto joint = [&]<int L>(std::integral_constant<int, L>) {
       using A = typename Axis<L>::type;
-      using J = Revolute<indexed_name<"j", L>(), A>;
-      if constexpr (A::fixed) return J{};
+      using J = Revolute<indexed_name<"j", L>(), A, Law>;
+      if constexpr (std::is_same_v<Law, axis_law::spring_damper>) return J({.n = p.axis[L], .c = p.stiffness, .d = p.damping});
+      else if constexpr (A::fixed) return J{};
       else return J({.n = p.axis[L]});
     };
-    return scene(World<"world">({.g = p.g}),                                                           //
+    auto body = [&]<int L>(std::integral_constant<int, L>) {
+      using B = Body<indexed_name<"b", L>(), cm::at_frame, Inertia>;
+      if constexpr (std::is_same_v<Inertia, inertia_kind::point>) return B({.m = p.m[L]});
+      else return B({.m = p.m[L], .J = p.J[L]});
+    };
+    auto world = [&] {
+      if constexpr (std::is_same_v<Gravity, gravity_kind::none>) return World<"world", Gravity>{};
+      else return World<"world", Gravity>({.g = p.g});
+    };
+    return scene(world(),                                                                              //
                  joint(std::integral_constant<int, I>{})...,                                            //
                  FixedTranslation<indexed_name<"r", I>()>({.d = p.d[I]})...,                            //
-                 Body<indexed_name<"b", I>()>({.m = p.m[I], .J = p.J[I]})...,                           //
+                 body(std::integral_constant<int, I>{})...,                                             //
                  connect<"world.frame_b", "j0.frame_a">,                                                //
                  connect<indexed_name<"j", I>() + ".frame_b", indexed_name<"r", I>() + ".frame_a">...,  //
                  connect<indexed_name<"r", I>() + ".frame_b", indexed_name<"b", I>() + ".frame_a">...,  //
