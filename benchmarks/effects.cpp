@@ -12,7 +12,8 @@
 // spring-damper law on every joint axis, or none), unaligned_axis (axis::any
 // holding the same direction, or axis::z), rigid_body (bodies with
 // rotational inertia, or point masses), spatial (the spatial algorithm forced
-// on a planar scene, or the planar arithmetic its types select).
+// on a planar scene, or the planar arithmetic its types select),
+// line_spring_damper (a SpringDamper from a post to the arm's end, or none).
 #include <cstdio>
 #include <functional>
 #include <map>
@@ -196,6 +197,16 @@ void register_all() {
          arm<gravity_kind::uniform, axis_law::none, axis::z, inertia_kind::point>(),
          bench::handwritten_arm{point_p, Mz}, xa);
   effect("robot_arm", "spatial", forced_spatial(arm()), arm(), hw_arm, xa);
+  // A spring-damper from a post to the arm's end: a line force, so a position pass.
+  auto sprung = scene(World<"world">{}, Torque<"motor">({.M_ext = Vec3d(0, 0, Mz)}), Revolute<"joint", axis::z>{},
+                      FixedTranslation<"rod">({.d = {arm_p.d, 0, 0}}),
+                      Body<"mass">({.m = arm_p.m, .J = Vec3d(arm_p.Jx, arm_p.Jz, arm_p.Jz).asDiagonal()}),
+                      FixedTranslation<"post">({.d = {0.3, 0.4, 0}}), SpringDamper<"spring">({.c = 20, .s0 = 0.2, .d = 0.1}),
+                      connect<"world.frame_b", "joint.frame_a">, connect<"world.frame_b", "motor.frame_a">,
+                      connect<"joint.frame_b", "rod.frame_a">, connect<"joint.frame_b", "motor.frame_b">,
+                      connect<"rod.frame_b", "mass.frame_a">, connect<"world.frame_b", "post.frame_a">,
+                      connect<"post.frame_b", "spring.frame_a">, connect<"rod.frame_b", "spring.frame_b">);
+  effect("robot_arm", "line_spring_damper", sprung, arm(), hw_arm, xa);
 
   const std::array<double, 4> xc{0.2, 0.4, 0.3, -0.5};
   const bench::handwritten_crane hw_crane{crane_p, f_push};
@@ -231,6 +242,10 @@ struct median_reporter : benchmark::ConsoleReporter {
 
 int main(int argc, char** argv) {
   register_all();
+  if (argc == 2 && std::string(argv[1]) == "--list") {
+    for (const auto& [name, f] : counters) std::printf("%s\n", name.c_str());
+    return 0;
+  }
   if (argc == 4 && std::string(argv[1]) == "--count") {
     const auto c = counters.find(argv[2]);
     if (c == counters.end()) {

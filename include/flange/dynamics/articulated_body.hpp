@@ -55,9 +55,10 @@ void accelerations_articulated_body(const S& scene, const T& t, const T* q, cons
   constexpr int NL = S::tree.n_links, N = S::n_q;
   const auto xf = joint_transforms(scene, q);
   const joint_state<T> xs{q, qd, N};
-  std::array<Vec3<T>, NL> n_ext;
+  std::array<Vec3<T>, NL> n_ext, f_ext;
   n_ext.fill(Vec3<T>::Zero());
-  gather_external(scene, t, xs, xf, n_ext);
+  f_ext.fill(Vec3<T>::Zero());
+  gather_external(scene, t, xs, xf, n_ext, f_ext);
   std::array<T, N> tau;
   joint_inputs(scene, t, xs, tau.data());
   std::array<Mat6<T>, NL> X, IA;
@@ -81,6 +82,7 @@ void accelerations_articulated_body(const S& scene, const T& t, const T* q, cons
     IA[L] = spatial_inertia<T>(scene.model().link[L]);
     Vec6<T> fext = Vec6<T>::Zero();
     fext.template head<3>() = n_ext[L];
+    fext.template tail<3>() = f_ext[L];
     pA[L] = -crm<T>(v[L]).transpose() * (IA[L] * v[L]) - fext;
   });
   for_links_reverse<S>([&](auto l) {

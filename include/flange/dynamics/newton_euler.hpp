@@ -54,7 +54,7 @@ using ne_workspace_t = typename ne_workspace<S, T>::type;
 
 template <class S, class T, class X>
 void newton_euler_bias(const S& scene, const T* qd, const X& xf, const std::array<Vec3<T>, S::tree.n_links>& n_ext,
-                       ne_workspace_t<S, T>& lk, T* b) {
+                       const std::array<Vec3<T>, S::tree.n_links>& f_ext, ne_workspace_t<S, T>& lk, T* b) {
   constexpr bool gravity = S::has_gravity;
   constexpr auto F = link_flags<S>::value;
   Vec3<T> minus_g = Vec3<T>::Zero();
@@ -114,6 +114,7 @@ void newton_euler_bias(const S& scene, const T* qd, const X& xf, const std::arra
       c.f = T(I.m) * c.a;
       if constexpr (!F.wd_zero[L]) c.f += cross(c.wd, h);
       if constexpr (!F.w_zero[L]) c.f += cross(c.w, cross(c.w, h));
+      if constexpr (F.has_ext_f[L]) c.f -= f_ext[L];
     }
     c.n = h.cross(c.a);
     if constexpr (!F.w_zero[L] || !F.wd_zero[L]) {
@@ -322,11 +323,11 @@ void accelerations_newton_euler(const S& scene, const T& t, const T* q, const T*
   constexpr int N = S::n_q, NL = S::tree.n_links;
   const auto xf = detail::joint_transforms(scene, q);
   const joint_state<T> x{q, qd, N};
-  std::array<Vec3<T>, NL> n_ext;
-  detail::gather_external(scene, t, x, xf, n_ext);
+  std::array<Vec3<T>, NL> n_ext, f_ext;
+  detail::gather_external(scene, t, x, xf, n_ext, f_ext);
   detail::ne_workspace_t<S, T> lk;
   std::array<T, N> b, tau;
-  detail::newton_euler_bias(scene, qd, xf, n_ext, lk, b.data());
+  detail::newton_euler_bias(scene, qd, xf, n_ext, f_ext, lk, b.data());
   detail::joint_inputs(scene, t, x, tau.data());
   Eigen::Matrix<T, N, N> M;
   detail::composite_rigid_body<S, T>(scene, xf, lk, M);
@@ -342,11 +343,12 @@ Eigen::Matrix<T, S::n_q, S::n_q> mass_matrix(const S& scene, const T* q) {
   constexpr int NL = S::tree.n_links;
   const auto xf = detail::joint_transforms(scene, q);
   std::array<T, S::n_q> qd{};
-  std::array<Vec3<T>, NL> n_ext;
+  std::array<Vec3<T>, NL> n_ext, f_ext;
   n_ext.fill(Vec3<T>::Zero());
+  f_ext.fill(Vec3<T>::Zero());
   detail::ne_workspace_t<S, T> lk;
   std::array<T, S::n_q> b;
-  detail::newton_euler_bias(scene, qd.data(), xf, n_ext, lk, b.data());
+  detail::newton_euler_bias(scene, qd.data(), xf, n_ext, f_ext, lk, b.data());
   Eigen::Matrix<T, S::n_q, S::n_q> M;
   detail::composite_rigid_body<S, T>(scene, xf, lk, M);
   return M;

@@ -195,25 +195,35 @@ void accelerations_planar(const S& scene, const T& t, const T* q, const T* qd, T
   const auto& model = scene.model();
   const joint_state<T> js{q, qd, N};
 
-  // External torques about k on each link (a Torque's k component acts on
-  // frame_b's link and reacts on frame_a's; rotations about k keep it).
+  // External loads on each link: torques about k and, from line and world
+  // forces, in-plane forces. Those need the frames' positions, so a scene
+  // with them runs the spatial position pass first (tree_walk.hpp).
   std::array<T, NL> n_ext{};
-  [&]<int... C>(std::integer_sequence<int, C...>) {
-    (
-        [&] {
-          using Comp = typename S::template component_type<C>;
-          if constexpr (Comp::kind == role::force) {
-            constexpr int la = S::tree.set_link[S::topology.set_of[S::table.frame_base[C]]];
-            constexpr int lb = S::tree.set_link[S::topology.set_of[S::table.frame_base[C] + 1]];
-            if constexpr (la != lb) {
+  std::array<vec2<T>, NL> f_ext{};
+  if constexpr (has_motion_forces<S>()) {
+    std::array<Vec3<T>, NL> n3, f3;
+    gather_external(scene, t, js, joint_transforms(scene, q), n3, f3);
+    for (int L = 1; L < NL; ++L) {
+      if (F.has_ext[L]) n_ext[L] = n3[L](K);
+      if (F.has_ext_f[L]) f_ext[L] = {f3[L]((K + 1) % 3), f3[L]((K + 2) % 3)};
+    }
+  } else {
+    [&]<int... C>(std::integer_sequence<int, C...>) {
+      (
+          [&] {
+            using Comp = typename S::template component_type<C>;
+            if constexpr (Comp::kind == role::force && force_acts<S, C>()) {
+              // A Torque's k component acts on frame_b's link and reacts on
+              // frame_a's; rotations about k keep it.
+              constexpr auto links = force_links<S, C>();
               const T Mk = scene.template component<C>().torque(t, js)(K);
-              n_ext[lb] += Mk;
-              n_ext[la] -= Mk;
+              n_ext[links[1]] += Mk;
+              n_ext[links[0]] -= Mk;
             }
-          }
-        }(),
-        ...);
-  }(std::make_integer_sequence<int, S::n_components>{});
+          }(),
+          ...);
+    }(std::make_integer_sequence<int, S::n_components>{});
+  }
 
   // Newton–Euler at q̈ = 0: the bias b.
   std::array<planar_link<T>, NL> lk;
@@ -263,6 +273,7 @@ void accelerations_planar(const S& scene, const T& t, const T* q, const T* qd, T
       if constexpr (f_wd) accumulate<f_a>(c.f, perp(c.wd, h));
       if constexpr (f_w) accumulate<f_a || f_wd>(c.f, (-c.w * c.w) * h);
       if constexpr (!(f_a || f_wd || f_w)) c.f = {T(0), T(0)};
+      if constexpr (F.has_ext_f[L]) c.f = c.f - f_ext[L];
     }
     if constexpr (f_a) c.n = cross2(h, c.a);
     if constexpr (f_wd) accumulate<f_a>(c.n, T(I.I(K, K)) * c.wd);

@@ -1,7 +1,7 @@
 // Everything else, on demand: from (t, x) recover every variable of the DAE
 // (every frame's r, R, F, M and every component internal, with the time
 // derivatives the equations use), the frames' velocities and accelerations,
-// and the energy.
+// and the energy (kinetic, gravity's potential and the springs').
 //
 // The residual evaluated on the recovered variables is ≈ 0: that is flange's
 // main self-check, since the residual comes from the components' equations
@@ -111,9 +111,14 @@ template <class S, class T = double, class State>
     constexpr int fb = tab.frame_base[decltype(i)::value];
     if constexpr (C::kind == role::body) sol.cut[fb] = c.flows(sol.frames[fb], g);
     if constexpr (C::kind == role::force) {
-      const auto [a, b] = c.flows(t, js, sol.frames[fb].R, sol.frames[fb + 1].R);
-      sol.cut[fb] = a;
-      sol.cut[fb + 1] = b;
+      // The element's flows are minus what it exerts, in frame coordinates.
+      constexpr int nf = int(C::frames.size());
+      std::array<wrench<T>, nf> on;
+      c.wrenches(t, js, &sol.frames[fb], on.data());
+      for (int k = 0; k < nf; ++k) {
+        const Mat3<T>& R = sol.frames[fb + k].R;
+        sol.cut[fb + k] = {-(R * on[k].f), -(R * on[k].n)};
+      }
     }
   });
   // Edges from the leaves inward.
@@ -178,6 +183,15 @@ template <class S, class T = double, class State>
             -tilde<T>(c.n().template cast<T>() * sol.qd[qi]) * Rrel;
       }
     }
+    if constexpr (requires { c.internal_values(t, js, &sol.frames[0]); }) {
+      const auto iv = c.internal_values(t, js, &sol.frames[tab.frame_base[I]]);
+      for (int i = 0; i < int(iv.size()); ++i) {
+        sol.y(at(4 * nf + i)) = iv[i].first;
+        sol.yd(at(4 * nf + i)) = iv[i].second;
+      }
+    }
+    if constexpr (requires { c.potential_energy(t, js, &sol.frames[0]); })
+      sol.potential += c.potential_energy(t, js, &sol.frames[tab.frame_base[I]]);
     if constexpr (C::kind == role::body) {
       const auto& k = sol.frames[tab.frame_base[I]];
       sol.y.template segment<3>(at(4)) = k.v;

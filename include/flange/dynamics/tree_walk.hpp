@@ -4,6 +4,7 @@
 #include <tuple>
 #include <utility>
 
+#include "flange/components/frame_kinematics.hpp"
 #include "flange/dynamics/joint_transform.hpp"
 #include "flange/errors.hpp"
 
@@ -25,6 +26,35 @@ struct link_info {
   using transform = joint_transform<joint_type, (dir > 0 ? 1 : -1), T>;
 };
 
+/// The links a force element's frames sit on, frame by frame (0: the World's).
+/// A one-frame element (WorldForce, WorldTorque) takes its reaction from the World.
+template <class S, int C>
+constexpr auto force_links() {
+  using Comp = typename S::template component_type<C>;
+  std::array<int, Comp::frames.size()> l{};
+  for (int k = 0; k < int(Comp::frames.size()); ++k)
+    l[k] = S::tree.set_link[S::topology.set_of[S::table.frame_base[C] + k]];
+  return l;
+}
+/// Whether a force element acts between different links (or on one link, from the World).
+template <class S, int C>
+constexpr bool force_acts() {
+  constexpr auto l = force_links<S, C>();
+  if constexpr (l.size() == 1) return l[0] != 0;
+  else return l[0] != l[1];
+}
+/// Whether any force element needs the frames' positions and velocities.
+template <class S>
+constexpr bool has_motion_forces() {
+  return []<int... C>(std::integer_sequence<int, C...>) {
+    return (false || ... || [] {
+      using Comp = typename S::template component_type<C>;
+      if constexpr (Comp::kind == role::force) return Comp::needs_motion && force_acts<S, C>();
+      else return false;
+    }());
+  }(std::make_integer_sequence<int, S::n_components>{});
+}
+
 /// What is known about each link before any number is seen: which quantities
 /// are identically zero in the bias pass (q̈ = 0), and which the mass matrix
 /// needs. The recursive algorithms skip what these flags rule out, so a link
@@ -37,7 +67,8 @@ struct link_flags {
     std::array<bool, NL> wd_zero{};   ///< ω̇ ≡ 0 when q̈ = 0
     std::array<bool, NL> p_zero{};    ///< the link origin coincides with its joint's parent-side frame… and that frame with the parent origin
     std::array<bool, NL> need_I{};    ///< the mass matrix needs the composite rotational inertia
-    std::array<bool, NL> has_ext{};   ///< a force element acts on the link
+    std::array<bool, NL> has_ext{};   ///< a force element acts on the link (a torque about its origin)
+    std::array<bool, NL> has_ext_f{}; ///< … with a force (line forces, world forces)
     std::array<bool, NL> need_f{};    ///< the link force f is used (prismatic joint, or passed to a parent)
     std::array<int, NL> w_axis{};     ///< ω is axial along this coordinate axis (−1: dense)
     std::array<int, NL> wd_axis{};    ///< ω̇ (q̈ = 0) is axial along this coordinate axis (−1: dense)
@@ -79,14 +110,18 @@ struct link_flags {
     [&]<int... C>(std::integer_sequence<int, C...>) {
       (
           [&] {
-            if constexpr (S::template component_type<C>::kind == role::force) {
-              const int la = S::tree.set_link[S::topology.set_of[S::table.frame_base[C]]];
-              const int lb = S::tree.set_link[S::topology.set_of[S::table.frame_base[C] + 1]];
-              if (la != lb) t.has_ext[la] = t.has_ext[lb] = true;
+            using Comp = typename S::template component_type<C>;
+            if constexpr (Comp::kind == role::force) {
+              if constexpr (force_acts<S, C>())
+                for (int l : force_links<S, C>()) {
+                  t.has_ext[l] = true;
+                  if constexpr (Comp::needs_motion) t.has_ext_f[l] = true;
+                }
             }
           }(),
           ...);
     }(std::make_integer_sequence<int, S::n_components>{});
+    t.has_ext[0] = t.has_ext_f[0] = false;  // the World takes what it is given
     return t;
   }();
 };
@@ -128,20 +163,86 @@ Vec3<T> link_to_world(const X& xf, const Vec3<T>& v) {
   else return link_to_world<link_info<S, L>::parent, S>(xf, std::get<L - 1>(xf).rot_t(v));
 }
 
-/// The torques of the scene's force elements on each link, in link
-/// coordinates; only the links some element acts on (link_flags::has_ext) are written.
+/// Positions, orientations and velocities of every link (accelerations are
+/// left zero): what force elements that need the frames' motion read.
+template <class S, class T, class X>
+std::array<frame_kinematics<T>, S::tree.n_links> link_motion(const S& scene, const X& xf, const T* qd) {
+  std::array<frame_kinematics<T>, S::tree.n_links> lk;
+  for (auto& k : lk) {
+    k.r = k.v = k.w = k.a = k.wd = Vec3<T>::Zero();
+    k.R = Mat3<T>::Identity();
+  }
+  for_links<S>([&](auto l) {
+    constexpr int L = decltype(l)::value;
+    using LI = link_info<S, L>;
+    using XF = typename LI::template transform<T>;
+    const auto& xj = std::get<L - 1>(xf);
+    const auto& P = lk[LI::parent];
+    auto& c = lk[L];
+    const Vec3<T> p = scene.model().set_offset[LI::parent_set].template cast<T>() + xj.p();
+    Vec3<T> pv = P.w.cross(p);
+    if constexpr (XF::translates) pv += xj.axis(qd[LI::q]);
+    c.R = xj.matrix() * P.R;
+    c.r = P.r + P.R.transpose() * p;
+    c.v = P.v + P.R.transpose() * pv;
+    c.w = xj.rot(P.w);
+    if constexpr (XF::rotates) c.w += xj.axis(qd[LI::q]);
+  });
+  return lk;
+}
+
+/// The external loads of the scene's force elements on each link, in link
+/// coordinates: forces f_ext and torques n_ext about the link origin. Only the
+/// links some element acts on (link_flags::has_ext, has_ext_f) are written.
+/// A scene with only Torque elements needs the link rotations alone; one with
+/// line or world forces first runs a position pass (link_motion).
 template <class S, class T, class X, class NL>
-void gather_external(const S& scene, const T& t, const joint_state<T>& x, const X& xf, NL& n_ext) {
-  for (int L = 0; L < S::tree.n_links; ++L)
-    if (link_flags<S>::value.has_ext[L]) n_ext[L].setZero();
-  [&]<int... C>(std::integer_sequence<int, C...>) {
-    (
-        [&] {
-          using Comp = typename S::template component_type<C>;
-          if constexpr (Comp::kind == role::force) {
-            constexpr int la = S::tree.set_link[S::topology.set_of[S::table.frame_base[C]]];
-            constexpr int lb = S::tree.set_link[S::topology.set_of[S::table.frame_base[C] + 1]];
-            if constexpr (la != lb) {
+void gather_external(const S& scene, const T& t, const joint_state<T>& x, const X& xf, NL& n_ext, NL& f_ext) {
+  constexpr auto F = link_flags<S>::value;
+  for (int L = 0; L < S::tree.n_links; ++L) {
+    if (F.has_ext[L]) n_ext[L].setZero();
+    if (F.has_ext_f[L]) f_ext[L].setZero();
+  }
+  if constexpr (has_motion_forces<S>()) {
+    const auto lk = link_motion(scene, xf, x.qd_);
+    [&]<int... C>(std::integer_sequence<int, C...>) {
+      (
+          [&] {
+            using Comp = typename S::template component_type<C>;
+            if constexpr (Comp::kind == role::force && force_acts<S, C>()) {
+              constexpr int nf = int(Comp::frames.size());
+              constexpr auto links = force_links<S, C>();
+              std::array<frame_kinematics<T>, nf> fk;
+              std::array<Vec3<T>, nf> p;
+              for (int k = 0; k < nf; ++k) {
+                const auto& L = lk[links[k]];
+                p[k] = scene.model().set_offset[S::topology.set_of[S::table.frame_base[C] + k]].template cast<T>();
+                fk[k].R = L.R;
+                fk[k].w = L.w;
+                fk[k].r = L.r + L.R.transpose() * p[k];
+                fk[k].v = L.v + L.R.transpose() * L.w.cross(p[k]);
+              }
+              std::array<wrench<T>, nf> on;
+              scene.template component<C>().wrenches(t, x, fk.data(), on.data());
+              for (int k = 0; k < nf; ++k) {
+                const int l = links[k];
+                if (l == 0) continue;
+                const Vec3<T> f = lk[l].R * on[k].f;
+                n_ext[l] += lk[l].R * on[k].n + p[k].cross(f);
+                if constexpr (Comp::needs_motion) f_ext[l] += f;
+              }
+            }
+          }(),
+          ...);
+    }(std::make_integer_sequence<int, S::n_components>{});
+  } else {
+    [&]<int... C>(std::integer_sequence<int, C...>) {
+      (
+          [&] {
+            using Comp = typename S::template component_type<C>;
+            if constexpr (Comp::kind == role::force && force_acts<S, C>()) {
+              constexpr auto links = force_links<S, C>();
+              constexpr int la = links[0], lb = links[1];
               // Pure torque: M_ext acts on frame_b's side, −M_ext on frame_a's
               // (frames share their link's orientation: rigid edges only translate).
               const Vec3<T> M = scene.template component<C>().torque(t, x);
@@ -151,10 +252,10 @@ void gather_external(const S& scene, const T& t, const joint_state<T>& x, const 
               }
               if constexpr (la != 0) n_ext[la] -= M;
             }
-          }
-        }(),
-        ...);
-  }(std::make_integer_sequence<int, S::n_components>{});
+          }(),
+          ...);
+    }(std::make_integer_sequence<int, S::n_components>{});
+  }
 }
 
 template <class T>

@@ -23,6 +23,8 @@ class Torque {
   static constexpr role kind = role::force;
   static constexpr std::array<std::string_view, 2> frames{"frame_a", "frame_b"};
   static constexpr std::array<internal_decl, 0> internals{};
+  static constexpr bool needs_motion = false;  // a pure torque: the link rotations suffice
+  static constexpr bool line_of_action = false;
 
   struct params {
     In M_ext;
@@ -46,12 +48,13 @@ class Torque {
                                    eq(M_<1>, -(R_<1> * transpose(R_<0>) * M)));
   }
 
-  /// The flows for given orientations R_a, R_b of the two frames.
+  /// What the element exerts at its frames, world coordinates: M_ext on
+  /// frame_b's side, −M_ext on frame_a's (M_ext resolved in frame_a).
   template <class T>
-  [[nodiscard]] std::pair<wrench<T>, wrench<T>> flows(const T& t, const joint_state<T>& x, const Mat3<T>& Ra,
-                                                      const Mat3<T>& Rb) const {
-    const Vec3<T> M = torque(t, x);
-    return {{Vec3<T>::Zero(), M}, {Vec3<T>::Zero(), -(Rb * Ra.transpose() * M)}};
+  void wrenches(const T& t, const joint_state<T>& x, const frame_kinematics<T>* k, wrench<T>* on) const {
+    const Vec3<T> M = k[0].R.transpose() * torque(t, x);
+    on[0] = {Vec3<T>::Zero(), -M};
+    on[1] = {Vec3<T>::Zero(), M};
   }
 
  private:

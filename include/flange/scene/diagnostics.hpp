@@ -84,5 +84,12 @@ struct not_tied_through_joints {
                 "has no joint coordinates; connect it to the World through joints and rigid components");
 };
 
+template <class Component>
+struct force_ends_in_one_set {
+  static_assert(always_false<Component>,
+                "flange: both ends of this line force element are in one connection set, so its line has no length "
+                "and it acts on nothing; connect frame_a and frame_b to frames that move apart");
+};
+
 }  // namespace diagnostic
 }  // namespace flange

@@ -132,6 +132,29 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
   static_assert((detail::report<topology.n_worlds == 1 ? topology.unreached : -1, diagnostic::not_connected_to_world,
                                 Cs...>()));
 
+  // A line force needs its two ends apart.
+ private:
+  static constexpr int first_collapsed_force() {
+    int i = 0, found = -1;
+    (
+        [&] {
+          if constexpr (Cs::kind == role::force && int(Cs::frames.size()) == 2) {
+            if constexpr (requires { Cs::line_of_action; }) {
+              if (Cs::line_of_action && found < 0 &&
+                  topology.set_of[table.frame_base[i]] == topology.set_of[table.frame_base[i] + 1])
+                found = i;
+            }
+          }
+          ++i;
+        }(),
+        ...);
+    return found;
+  }
+
+ public:
+  static_assert(detail::report<topology.ok() ? first_collapsed_force() : -1, diagnostic::force_ends_in_one_set,
+                               Cs...>());
+
   // ---------------------------------------------------------- counts
  private:
   static constexpr int first_unbalanced() {
