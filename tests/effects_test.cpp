@@ -141,3 +141,32 @@ TEST_CASE("every specialised variant gives the numbers of its general form") {
       connect<"rope.frame_b", "load.frame_a">);
   CHECK(max_difference(crane, crane_any, rng) < 1e-14);
 }
+
+TEST_CASE("a prismatic joint's spring-damper and friction laws against closed forms and the residual") {
+  // A cart on a rail along x without gravity: m·s̈ = −c·(s − s0) − d·ṡ + f.
+  const double m = 2.0, c = 8.0, d = 0.4, s0 = 0.3, f = 0.5;
+  auto rail = [&](auto joint) {
+    return scene(World<"world", gravity_kind::none>{}, joint, PointMass<"cart">({.m = m}),
+                 connect<"world.frame_b", "rail.frame_a">, connect<"rail.frame_b", "cart.frame_a">);
+  };
+  const auto sd = rail(Prismatic<"rail", axis::x, double, axis_law::spring_damper>({.f = f, .c = c, .d = d, .s0 = s0}));
+  using X = decltype(sd)::state_type;
+  // Equilibrium s* = s0 + f/c; underdamped approach from s(0) = 1, ṡ(0) = 0.
+  const double se = s0 + f / c, w = std::sqrt(c / m), zeta = d / (2 * std::sqrt(c * m)),
+               wd = w * std::sqrt(1 - zeta * zeta), A = 1.0 - se, B = zeta * w * A / wd, T = 4.0;
+  X x{1.0, 0.0};
+  odeint::integrate_adaptive(odeint::make_controlled(1e-12, 1e-12, odeint::runge_kutta_dopri5<X>()), sd, x, 0.0, T, 1e-3);
+  CHECK(std::abs(x[0] - (se + std::exp(-zeta * w * T) * (A * std::cos(wd * T) + B * std::sin(wd * T)))) < 1e-9);
+  CHECK(scaled_residual(sd, recover(sd, T, x)) < 1e-13);
+
+  // Coulomb friction F_c larger than the push f: while ṡ ≫ v_s, m·s̈ = f − F_c.
+  const double fc = 1.5;
+  const auto fr = rail(Prismatic<"rail", axis::x, double, axis_law::friction>({.f = f, .f_c = fc, .v_s = 1e-6}));
+  X y{0.0, 2.0};
+  const double Tf = 1.5;  // ṡ(T) = 2 − 0.5·1.5 = 1.25 > 0
+  odeint::integrate_adaptive(odeint::make_controlled(1e-12, 1e-12, odeint::runge_kutta_dopri5<X>()), fr, y, 0.0, Tf, 1e-3);
+  CHECK(std::abs(y[1] - (2.0 + (f - fc) / m * Tf)) < 1e-10);
+  CHECK(scaled_residual(fr, recover(fr, Tf, y)) < 1e-13);
+  CHECK_THROWS_WITH((Prismatic<"rail", axis::x, double, axis_law::spring_damper>({.c = -2.0})),
+                    Catch::Contains("Prismatic \"rail\": spring-damper c = -2"));
+}

@@ -8,29 +8,53 @@
 // Frames 1, 2 are frame_a, frame_b; s is the internal variable. f > 0 pushes
 // frame_b along +n. f is a constant, a callable f(t), or f(t, x) of the joint
 // state x (see joint_state).
+//
+// Prismatic<"rail", axis::x, double, axis_law::spring_damper> or
+// axis_law::friction adds a law along the axis (joints/axis_law.hpp); the last
+// equation becomes  f − (c·(s − s0) + d·ṡ) = −F₂·n, or
+// f − (d·ṡ + F_c·tanh(ṡ / v_s)) = −F₂·n.
 #pragma once
 #include <boost/hana/tuple.hpp>
 
 #include "flange/components/component.hpp"
 #include "flange/components/frame_kinematics.hpp"
 #include "flange/joints/axis.hpp"
+#include "flange/joints/axis_law.hpp"
 #include "flange/joints/revolute.hpp"
 
 namespace flange {
 
 namespace detail {
-template <class Axis, class Force>
+// The parameters: the axis n (a run-time axis only), the force input f, and
+// the axis law's numbers.
+template <class Axis, class Force, class Law>
 struct prismatic_params {
   Vec3d n = Vec3d::UnitX();
   Force f{};
 };
 template <int I, class Force>
-struct prismatic_params<axis::coordinate<I>, Force> {
+struct prismatic_params<axis::coordinate<I>, Force, axis_law::none> {
   Force f{};
+};
+template <class Axis, class Force>
+struct prismatic_params<Axis, Force, axis_law::spring_damper> {
+  Vec3d n = Vec3d::UnitX();  ///< ignored for a compile-time axis
+  Force f{};
+  double c = 0;   ///< stiffness [N/m]
+  double d = 0;   ///< damping [N s/m]
+  double s0 = 0;  ///< rest position [m]
+};
+template <class Axis, class Force>
+struct prismatic_params<Axis, Force, axis_law::friction> {
+  Vec3d n = Vec3d::UnitX();  ///< ignored for a compile-time axis
+  Force f{};
+  double d = 0;       ///< viscous friction [N s/m]
+  double f_c = 0;     ///< Coulomb friction force [N]
+  double v_s = 1e-3;  ///< regularisation speed [m/s]: tanh(ṡ / v_s)
 };
 }  // namespace detail
 
-template <fixed_string Name, class Axis = axis::any, class Force = double>
+template <fixed_string Name, class Axis = axis::any, class Force = double, class Law = axis_law::none>
 class Prismatic {
  public:
   static constexpr auto name = Name;
@@ -42,21 +66,27 @@ class Prismatic {
   static constexpr std::array<internal_decl, 1> internals{{{"s", expr::var_kind::scalar}}};
   static constexpr bool has_input = true;
 
-  using params = detail::prismatic_params<Axis, Force>;
+  static constexpr bool has_law = !std::is_same_v<Law, axis_law::none>;
+  using params = detail::prismatic_params<Axis, Force, Law>;
 
   explicit Prismatic(params p) : f_(std::move(p.f)) {
     if constexpr (Axis::fixed) n_ = Axis::unit();
     else n_ = detail::unit_axis(name.view(), "Prismatic", p.n);
     if constexpr (std::is_arithmetic_v<Force>) detail::require_finite(name.view(), "Prismatic", "f", f_);
+    if constexpr (std::is_same_v<Law, axis_law::spring_damper>)
+      law_ = detail::make_axis_law<Law>(name.view(), "Prismatic", p, p.s0);
+    else if constexpr (has_law) law_ = detail::make_axis_law<Law>(name.view(), "Prismatic", p, 0.0);
   }
 
   [[nodiscard]] const Vec3d& n() const { return n_; }
   [[nodiscard]] const Force& f() const { return f_; }
 
-  /// The generalised force on s: the axial force input at (t, x).
+  /// The generalised force on s: the axial force input at (t, x), plus the
+  /// axis law's force (joints/axis_law.hpp).
   template <class T>
-  [[nodiscard]] T generalized_force(const T& t, const joint_state<T>& x, int) const {
-    return eval_input(f_, t, x);
+  [[nodiscard]] T generalized_force(const T& t, const joint_state<T>& x, int q) const {
+    if constexpr (has_law) return eval_input(f_, t, x) + detail::axis_law_force<Law>(law_, x.q(q), x.qd(q));
+    else return eval_input(f_, t, x);
   }
 
   static constexpr auto s = internal_<2, 0, expr::var_kind::scalar>;
@@ -68,7 +98,7 @@ class Prismatic {
                                    orientation_eq(R_<1>, R_<0>),                    //
                                    eq(F_<1>, -F_<0>),                               //
                                    eq(M_<1>, -M_<0> + s * cross(n, F_<0>)),         //
-                                   eq(input_node<Force, shape::scalar>{{}, &f_, "f"}, -dot(F_<1>, n)));
+                                   axis_equation(n));
   }
 
   template <class T>
@@ -82,8 +112,16 @@ class Prismatic {
   }
 
  private:
+  auto axis_equation(const expr::param<Vec3d>& n) const {
+    using namespace expr;
+    const input_node<Force, shape::scalar> f{{}, &f_, "f"};
+    if constexpr (has_law) return eq(f - flange::detail::axis_law_resistance<Law>(law_, s, "s0"), -dot(F_<1>, n));
+    else return eq(f, -dot(F_<1>, n));
+  }
+
   Vec3d n_;
   Force f_;
+  detail::axis_law_values law_;
 };
 
 }  // namespace flange

@@ -36,17 +36,13 @@
 #include "flange/components/component.hpp"
 #include "flange/components/frame_kinematics.hpp"
 #include "flange/joints/axis.hpp"
+#include "flange/joints/axis_law.hpp"
 #include "flange/math/rotation.hpp"
 
 namespace flange {
 
 enum class joint_type { revolute, prismatic };
 
-namespace axis_law {
-struct none {};           ///< the paper's joint: no torque about the axis
-struct spring_damper {};  ///< linear spring and damper along the axis
-struct friction {};       ///< viscous plus regularised Coulomb friction along the axis
-}  // namespace axis_law
 
 namespace detail {
 template <class Axis, class Law>
@@ -92,43 +88,15 @@ class Revolute {
   explicit Revolute(params p) {
     if constexpr (Axis::fixed) n_ = Axis::unit();
     else n_ = detail::unit_axis(name.view(), "Revolute", p.n);
-    if constexpr (has_spring_damper) {
-      for (auto [what, v] : {std::pair{"c (stiffness)", p.c}, {"d (damping)", p.d}, {"phi0", p.phi0}})
-        detail::require_finite(name.view(), "Revolute", what, v);
-      if (p.c < 0 || p.d < 0)
-        throw parameter_error(detail::concat("Revolute \"", name.view(), "\": spring-damper c = ", p.c, ", d = ", p.d,
-                                             "; stiffness and damping must not be negative"));
-      c_ = p.c;
-      d_ = p.d;
-      phi0_ = p.phi0;
-    }
-    if constexpr (has_friction) {
-      for (auto [what, v] : {std::pair{"d (viscous friction)", p.d}, {"f_c (Coulomb friction)", p.f_c}, {"v_s", p.v_s}})
-        detail::require_finite(name.view(), "Revolute", what, v);
-      if (p.d < 0 || p.f_c < 0)
-        throw parameter_error(detail::concat("Revolute \"", name.view(), "\": friction d = ", p.d, ", f_c = ", p.f_c,
-                                             "; friction coefficients must not be negative"));
-      if (!(p.v_s > 0))
-        throw parameter_error(detail::concat("Revolute \"", name.view(), "\": friction v_s = ", p.v_s,
-                                             " must be positive (it is the speed over which tanh regularises Coulomb friction)"));
-      d_ = p.d;
-      fc_ = p.f_c;
-      inv_vs_ = 1 / p.v_s;
-    }
+    if constexpr (has_spring_damper) law_ = detail::make_axis_law<Law>(name.view(), "Revolute", p, p.phi0);
+    if constexpr (has_friction) law_ = detail::make_axis_law<Law>(name.view(), "Revolute", p, 0.0);
   }
 
   /// The generalised force of the axis law on φ: −c·(φ − φ0) − d·φ̇, or
   /// −d·φ̇ − F_c·tanh(φ̇ / v_s).
   template <class T>
   [[nodiscard]] T generalized_force(const T&, const joint_state<T>& x, int q) const {
-    if constexpr (has_spring_damper) {
-      return -T(c_) * (x.q(q) - T(phi0_)) - T(d_) * x.qd(q);
-    } else if constexpr (has_friction) {
-      using std::tanh;
-      return -T(d_) * x.qd(q) - T(fc_) * tanh(x.qd(q) * T(inv_vs_));
-    } else {
-      return T(0);
-    }
+    return detail::axis_law_force<Law>(law_, x.q(q), x.qd(q));
   }
 
   [[nodiscard]] const Vec3d& n() const { return n_; }
@@ -166,17 +134,12 @@ class Revolute {
  private:
   auto axis_equation(const expr::param<Vec3d>& n) const {
     using namespace expr;
-    if constexpr (has_spring_damper)
-      return eq(dot(M_<1>, n), param<double>{c_, "c"} * (phi - param<double>{phi0_, "φ0"}) +
-                                   param<double>{d_, "d"} * der(phi));
-    else if constexpr (has_friction)
-      return eq(dot(M_<1>, n), param<double>{d_, "d"} * der(phi) +
-                                   param<double>{fc_, "F_c"} * tanh(der(phi) * param<double>{inv_vs_, "1/v_s"}));
+    if constexpr (has_input) return eq(dot(M_<1>, n), flange::detail::axis_law_resistance<Law>(law_, phi, "φ0"));
     else return eq(zero<shape::scalar>{}, dot(M_<1>, n));
   }
 
   Vec3d n_;
-  double c_ = 0, d_ = 0, phi0_ = 0, fc_ = 0, inv_vs_ = 0;
+  detail::axis_law_values law_;
 };
 
 }  // namespace flange

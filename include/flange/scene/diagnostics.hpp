@@ -91,5 +91,12 @@ struct force_ends_in_one_set {
                 "and it acts on nothing; connect frame_a and frame_b to frames that move apart");
 };
 
+template <class Component>
+struct world_load_on_world {
+  static_assert(always_false<Component>,
+                "flange: this WorldForce or WorldTorque is connected to the World's own frame, so it acts on nothing "
+                "that moves; connect its frame_b to a frame of the mechanism");
+};
+
 }  // namespace diagnostic
 }  // namespace flange

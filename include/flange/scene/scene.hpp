@@ -150,10 +150,21 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
         ...);
     return found;
   }
+  static constexpr int first_load_on_world() {
+    int i = 0, found = -1;
+    ((Cs::kind == role::force && Cs::frames.size() == 1 && found < 0 &&
+              topology.set_of[table.frame_base[i]] == topology.set_of[table.frame_base[topology.world]]
+          ? found = i
+          : 0,
+      ++i),
+     ...);
+    return found;
+  }
 
  public:
   static_assert(detail::report<topology.ok() ? first_collapsed_force() : -1, diagnostic::force_ends_in_one_set,
                                Cs...>());
+  static_assert(detail::report<topology.ok() ? first_load_on_world() : -1, diagnostic::world_load_on_world, Cs...>());
 
   // ---------------------------------------------------------- counts
  private:
