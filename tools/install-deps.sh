@@ -3,9 +3,18 @@
 # Run as root (or with sudo). Nothing is installed when everything is there.
 #   tools/install-deps.sh            compiler, CMake, Eigen, Boost, Catch2, Google Benchmark
 #   tools/install-deps.sh --plots    also gnuplot, for docs/*.png
+#   tools/install-deps.sh --peers    also MuJoCo and Simbody, the work-precision study's peers
+# (--plots and --peers may be given together; valgrind comes with --plots, for
+# the instruction counts in docs/effects.md.)
 set -euo pipefail
 packages=(g++ cmake make libeigen3-dev libboost-dev catch2 libbenchmark-dev)
-if [[ "${1:-}" == "--plots" ]]; then packages+=(gnuplot-nox); fi
+for arg in "$@"; do
+  case "$arg" in
+    --plots) packages+=(gnuplot-nox valgrind) ;;
+    --peers) packages+=(libmujoco-dev libsimbody-dev) ;;
+    *) echo "install-deps: unknown option $arg (use --plots, --peers)" >&2; exit 2 ;;
+  esac
+done
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
