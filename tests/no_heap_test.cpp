@@ -8,6 +8,8 @@
 
 #include <catch2/catch.hpp>
 #include <flange/dynamics/articulated_body.hpp>
+#include <flange/forces/line_force.hpp>
+#include <flange/forces/world_force.hpp>
 #include <flange/simulate/odeint.hpp>
 
 #include "random_params.hpp"
@@ -44,8 +46,18 @@ TEST_CASE("the derivative allocates nothing") {
   std::array<double, 2> x{0.1, 0.2}, dx;
   std::array<double, 12> y{}, dy;
   eigen_state<decltype(arm)> xe(0.1, 0.2), dxe;
+  // Line forces and world loads take the position pass; friction a tanh.
+  const auto sprung = scene(World<"world">{}, Revolute<"joint", axis::z, axis_law::friction>({.d = 0.1, .f_c = 0.2}),
+                            FixedTranslation<"rod">({.d = {0.5, 0, 0}}), Body<"mass">({.m = 1.0}),
+                            SpringDamper<"spring">({.c = 20, .s0 = 0.1, .d = 0.3}),
+                            WorldForce<"push">({.value = Vec3d(1, 0, 0)}), connect<"world.frame_b", "joint.frame_a">,
+                            connect<"joint.frame_b", "rod.frame_a">, connect<"rod.frame_b", "mass.frame_a">,
+                            connect<"world.frame_b", "spring.frame_a">, connect<"rod.frame_b", "spring.frame_b">,
+                            connect<"rod.frame_b", "push.frame_b">);
+  std::array<double, 2> z{0.3, 0.4}, dz;
   CHECK(count_allocations([&] {
           for (int i = 0; i < 100; ++i) {
+            sprung(z, dz, 0.0);
             arm(x, dx, 0.1 * i);
             arm(xe, dxe, 0.1 * i);
             chain(y, dy, 0.0);
