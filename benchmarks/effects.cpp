@@ -113,38 +113,6 @@ spatial<S> forced_spatial(S s) {
   return {std::move(s)};
 }
 
-/// Gravity-free closed forms of the paper's scenes.
-struct arm_no_gravity {
-  models::robot_arm_params p;
-  template <class X>
-  void operator()(const X& x, X& dx, double) const {
-    dx[0] = x[1];
-    dx[1] = Mz / (p.Jz + p.m * p.d * p.d);
-  }
-};
-struct crane_no_gravity {
-  models::gantry_crane_params p;
-  template <class X>
-  void operator()(const X& x, X& dx, double) const {
-    const double s = std::sin(x[1]), c = std::cos(x[1]), w2 = x[3] * x[3];
-    const double den = p.M + p.m * s * s;
-    dx[0] = x[2];
-    dx[1] = x[3];
-    dx[2] = (f_push + p.d * w2 * p.m * s) / den;
-    dx[3] = -(f_push * c + p.d * w2 * c * p.m * s) / (p.d * den);
-  }
-};
-
-template <class System, std::size_t N>
-void derivative(benchmark::State& st, const System& sys, std::array<double, N> x) {
-  std::array<double, N> dx;
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(x);
-    sys(x, dx, 0.0);
-    benchmark::DoNotOptimize(dx);
-  }
-}
-
 /// For instruction counts: `effects --count NAME N` evaluates one variant N
 /// times inside evaluate_n, outside Google Benchmark, so that
 ///   valgrind --tool=callgrind --toggle-collect='*evaluate_n*' build/benchmarks/effects --count NAME 100000
@@ -172,7 +140,7 @@ void effect(const std::string& scene, const std::string& name, With with, Withou
             std::array<double, N> x) {
   auto reg = [&](const std::string& variant, auto sys) {
     benchmark::RegisterBenchmark((scene + "/" + name + "/" + variant).c_str(),
-                                 [sys, x](benchmark::State& s) { derivative(s, sys, x); })
+                                 [sys, x](benchmark::State& s) { bench::derivative(s, sys, x); })
         ->Repetitions(7)
         ->ReportAggregatesOnly(true)
         ->MinTime(0.05);
@@ -188,7 +156,7 @@ void effect(const std::string& scene, const std::string& name, With with, Withou
 void register_all() {
   const std::array<double, 2> xa{0.3, 0.7};
   const bench::handwritten_arm hw_arm{arm_p, Mz};
-  effect("robot_arm", "gravity", arm(), arm<gravity_kind::none>(), arm_no_gravity{arm_p}, xa);
+  effect("robot_arm", "gravity", arm(), arm<gravity_kind::none>(), bench::handwritten_arm_no_gravity{arm_p, Mz}, xa);
   effect("robot_arm", "damper", arm<gravity_kind::uniform, axis_law::spring_damper>(), arm(), hw_arm, xa);
   effect("robot_arm", "unaligned_axis", arm<gravity_kind::uniform, axis_law::none, axis::any>(), arm(), hw_arm, xa);
   auto point_p = arm_p;
@@ -210,7 +178,8 @@ void register_all() {
 
   const std::array<double, 4> xc{0.2, 0.4, 0.3, -0.5};
   const bench::handwritten_crane hw_crane{crane_p, f_push};
-  effect("gantry_crane", "gravity", crane(), crane<gravity_kind::none>(), crane_no_gravity{crane_p}, xc);
+  effect("gantry_crane", "gravity", crane(), crane<gravity_kind::none>(),
+         bench::handwritten_crane_no_gravity{crane_p, f_push}, xc);
   effect("gantry_crane", "damper", crane<gravity_kind::uniform, axis_law::spring_damper>(), crane(), hw_crane, xc);
   effect("gantry_crane", "unaligned_axis", crane<gravity_kind::uniform, axis_law::none, axis::any>(), crane(), hw_crane, xc);
   effect("gantry_crane", "rigid_body", crane<gravity_kind::uniform, axis_law::none, axis::z, inertia_kind::full>(),

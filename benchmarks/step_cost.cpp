@@ -30,16 +30,6 @@ const auto crane = models::gantry_crane(crane_p, 0.7);
 const bench::handwritten_arm arm_hw{arm_p, 0.3};
 const bench::handwritten_crane crane_hw{crane_p, 0.7};
 
-template <class System, std::size_t N>
-void derivative(benchmark::State& st, const System& sys, std::array<double, N> x) {
-  std::array<double, N> dx;
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(x);
-    sys(x, dx, 0.0);
-    benchmark::DoNotOptimize(dx);
-  }
-}
-
 template <class State, class Stepper, class System>
 void rk4_steps(benchmark::State& st, const System& sys, State x) {
   Stepper stepper;
@@ -126,8 +116,8 @@ void register_all() {
   auto reg = [](const char* name, auto fn) {
     benchmark::RegisterBenchmark(name, fn)->Repetitions(7)->ReportAggregatesOnly(true)->MinTime(0.05);
   };
-  reg("robot_arm/derivative/generated", [](benchmark::State& s) { derivative(s, arm, arm_x); });
-  reg("robot_arm/derivative/handwritten", [](benchmark::State& s) { derivative(s, arm_hw, arm_x); });
+  reg("robot_arm/derivative/generated", [](benchmark::State& s) { bench::derivative(s, arm, arm_x); });
+  reg("robot_arm/derivative/handwritten", [](benchmark::State& s) { bench::derivative(s, arm_hw, arm_x); });
   reg("robot_arm/rk4_step_array/generated", [](benchmark::State& s) { rk4_steps<A2, rk4_array<A2>>(s, arm, arm_x); });
   reg("robot_arm/rk4_step_array/handwritten",
       [](benchmark::State& s) { rk4_steps<A2, rk4_array<A2>>(s, arm_hw, arm_x); });
@@ -139,8 +129,8 @@ void register_all() {
       [](benchmark::State& s) { rk4_steps<E2, rk4_eigen<E2>>(s, arm, E2(arm_x[0], arm_x[1])); });
   reg("robot_arm/rk4_step_eigen/handwritten",
       [](benchmark::State& s) { rk4_steps<E2, rk4_eigen<E2>>(s, arm_hw, E2(arm_x[0], arm_x[1])); });
-  reg("gantry_crane/derivative/generated", [](benchmark::State& s) { derivative(s, crane, crane_x); });
-  reg("gantry_crane/derivative/handwritten", [](benchmark::State& s) { derivative(s, crane_hw, crane_x); });
+  reg("gantry_crane/derivative/generated", [](benchmark::State& s) { bench::derivative(s, crane, crane_x); });
+  reg("gantry_crane/derivative/handwritten", [](benchmark::State& s) { bench::derivative(s, crane_hw, crane_x); });
   reg("gantry_crane/rk4_step_array/generated",
       [](benchmark::State& s) { rk4_steps<A4, rk4_array<A4>>(s, crane, crane_x); });
   reg("gantry_crane/rk4_step_array/handwritten",
