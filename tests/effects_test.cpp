@@ -5,6 +5,7 @@
 #include <flange/flange.hpp>
 #include <flange/simulate/odeint.hpp>
 
+#include "consistency.hpp"
 #include "random_params.hpp"
 
 using namespace flange;
@@ -169,4 +170,50 @@ TEST_CASE("a prismatic joint's spring-damper and friction laws against closed fo
   CHECK(scaled_residual(fr, recover(fr, Tf, y)) < 1e-13);
   CHECK_THROWS_WITH((Prismatic<"rail", axis::x, double, axis_law::spring_damper>({.c = -2.0})),
                     Catch::Contains("Prismatic \"rail\": spring-damper c = -2"));
+}
+
+namespace {
+/// A spatial gimbal (axes x, y, z) whose bodies sit at their links' origins:
+/// the first and last with inertias of kind I1, the middle one of kind I2
+/// with inertia J1 (when I2 is not a point).
+template <class I1, class I2>
+auto gimbal(const Vec3d& J1 = Vec3d::Zero()) {
+  auto body = [](auto b, const Vec3d& Jd) {
+    using B = decltype(b);
+    if constexpr (B::is_point) return B({.m = 0.7});
+    else return B({.m = 0.7, .J = Jd.asDiagonal()});
+  };
+  return scene(World<"world">{}, Revolute<"j0", axis::x>{}, Revolute<"j1", axis::y>{}, Revolute<"j2", axis::z>{},
+               body(Body<"b0", cm::at_frame, I1>({.m = 1}), Vec3d(0.02, 0.03, 0.04)),
+               body(Body<"b1", cm::at_frame, I2>({.m = 1}), J1),
+               body(Body<"b2", cm::at_frame, I1>({.m = 1}), Vec3d(0.03, 0.03, 0.02)),
+               FixedTranslation<"r0">({.d = {0.3, 0.1, 0.0}}), FixedTranslation<"r1">({.d = {0.2, -0.1, 0.4}}),
+               connect<"world.frame_b", "j0.frame_a">, connect<"j0.frame_b", "b0.frame_a">,
+               connect<"j0.frame_b", "r0.frame_a">, connect<"r0.frame_b", "j1.frame_a">,
+               connect<"j1.frame_b", "b1.frame_a">, connect<"j1.frame_b", "r1.frame_a">,
+               connect<"r1.frame_b", "j2.frame_a">, connect<"j2.frame_b", "b2.frame_a">);
+}
+}  // namespace
+
+TEST_CASE("bodies at their links' origins: diagonal and point inertias known from the type give the general numbers") {
+  const auto typed = gimbal<inertia_kind::diagonal, inertia_kind::point>();
+  const auto general = gimbal<inertia_kind::full, inertia_kind::full>();  // the same J, and J = 0, as values
+  using F = detail::link_flags<std::remove_cvref_t<decltype(typed)>>;
+  STATIC_REQUIRE(F::value.I_kind[1] == 1);  // diagonal
+  STATIC_REQUIRE(F::value.I_kind[2] == 0);  // a point mass at the origin: no rotational inertia
+  STATIC_REQUIRE(F::value.h_zero[1] && F::value.h_zero[2] && F::value.h_zero[3]);
+  STATIC_REQUIRE(detail::link_flags<std::remove_cvref_t<decltype(general)>>::value.I_kind[1] == 2);
+  std::mt19937 rng(8);
+  CHECK(max_difference(typed, general, rng) < 1e-14);
+  // And against the articulated-body algorithm, which knows none of this.
+  test::consistency along;
+  for (int k = 0; k < 20; ++k) {
+    std::array<double, 6> x;
+    for (auto& v : x) v = test::uniform(rng, -2, 2);
+    along.sample(typed, 0.0, x);
+  }
+  CHECK(along.algorithms < 1e-12);
+  CHECK(along.residual < 1e-13);
+  CHECK_THROWS_WITH((Body<"b", cm::at_frame, inertia_kind::diagonal>({.m = 1, .J = Mat3d::Identity() + Mat3d::Ones() * 0.01})),
+                    Catch::Contains("Body \"b\": declared with a diagonal inertia") && Catch::Contains("products of inertia"));
 }

@@ -20,6 +20,11 @@
 //
 // The body still has ω (its frame turns with whatever it is fixed to), so its
 // variables and its equation count are those of Body.
+//
+// Body<Name, cm::at_frame, inertia_kind::diagonal> declares J diagonal in
+// frame_a's axes (checked at construction). Where a link's bodies all sit at
+// its origin, the dynamics then know its inertia is diagonal, or zero for
+// point masses, and skip the products that rules out (tree_walk.hpp).
 #pragma once
 #include <boost/hana/tuple.hpp>
 
@@ -35,8 +40,9 @@ struct offset {};    ///< the centre of mass is at r_CM from frame_a
 }  // namespace cm
 
 namespace inertia_kind {
-struct full {};   ///< a rotational inertia J (the paper's Body)
-struct point {};  ///< no rotational inertia: a point mass
+struct full {};      ///< a rotational inertia J (the paper's Body)
+struct diagonal {};  ///< J diagonal in frame_a's axes (checked at construction)
+struct point {};     ///< no rotational inertia: a point mass
 }  // namespace inertia_kind
 
 template <fixed_string Name, class CM = cm::at_frame, class Inertia = inertia_kind::full>
@@ -50,6 +56,7 @@ class Body {
       {{"v", expr::var_kind::vec}, {"ω", expr::var_kind::vec}}};
   static constexpr bool has_cm_offset = std::is_same_v<CM, cm::offset>;
   static constexpr bool is_point = std::is_same_v<Inertia, inertia_kind::point>;
+  static constexpr bool is_diagonal = std::is_same_v<Inertia, inertia_kind::diagonal>;
   static_assert(!(is_point && has_cm_offset),
                 "flange: a point mass sits at its frame; attach it through a FixedTranslation instead of cm::offset");
 
@@ -63,6 +70,10 @@ class Body {
     detail::require_finite(name.view(), "Body", "m (mass)", m_);
     if (m_ < 0) throw parameter_error(detail::concat("Body \"", name.view(), "\": mass m = ", m_, " is negative"));
     detail::require_inertia(name.view(), "Body", J_);
+    if (is_diagonal && !(J_ - Mat3d(J_.diagonal().asDiagonal())).isZero(0.0))
+      throw parameter_error(detail::concat("Body \"", name.view(), "\": declared with a diagonal inertia, but J = [",
+                                           J_.row(0), "; ", J_.row(1), "; ", J_.row(2),
+                                           "] has products of inertia; use inertia_kind::full"));
     if (is_point && !J_.isZero(0.0))
       throw parameter_error(detail::concat("Body \"", name.view(), "\": a point mass has no rotational inertia, but J = [",
                                            J_.row(0), "; ", J_.row(1), "; ", J_.row(2),

@@ -110,18 +110,22 @@ void newton_euler_bias(const S& scene, const T* qd, const X& xf, const std::arra
     decltype(auto) h = as_scalar<T>(I.h);
     // Link force f (needed by a prismatic joint and by the parent) and torque n
     // about the origin: f = m·a + ω̇ × h + ω × (ω × h), n = I·ω̇ + ω × I·ω + h × a.
+    // Terms the flags rule out (h = 0 or I = 0 for mass at the link origin,
+    // ω or ω̇ ≡ 0) are never formed.
     if constexpr (F.need_f[L]) {
       c.f = T(I.m) * c.a;
-      if constexpr (!F.wd_zero[L]) c.f += cross(c.wd, h);
-      if constexpr (!F.w_zero[L]) c.f += cross(c.w, cross(c.w, h));
+      if constexpr (!F.wd_zero[L] && !F.h_zero[L]) c.f += cross(c.wd, h);
+      if constexpr (!F.w_zero[L] && !F.h_zero[L]) c.f += cross(c.w, cross(c.w, h));
       if constexpr (F.has_ext_f[L]) c.f -= f_ext[L];
     }
-    c.n = h.cross(c.a);
-    if constexpr (!F.w_zero[L] || !F.wd_zero[L]) {
+    constexpr bool n_h = !F.h_zero[L], n_wd = !F.wd_zero[L] && F.I_kind[L] > 0, n_w = !F.w_zero[L] && F.I_kind[L] > 0;
+    if constexpr (n_h) c.n = h.cross(c.a);
+    if constexpr (n_wd || n_w) {
       decltype(auto) Io = as_scalar<T>(I.I);
-      if constexpr (!F.wd_zero[L]) c.n += mul<T>(Io, c.wd);
-      if constexpr (!F.w_zero[L]) c.n += cross(c.w, mul<T>(Io, c.w));
+      if constexpr (n_wd) accumulate<n_h>(c.n, inertia_times<F.I_kind[L], T>(Io, c.wd));
+      if constexpr (n_w) accumulate<n_h || n_wd>(c.n, Vec3<T>(cross(c.w, inertia_times<F.I_kind[L], T>(Io, c.w))));
     }
+    if constexpr (!(n_h || n_wd || n_w)) c.n.setZero();
     if constexpr (F.has_ext[L]) c.n -= n_ext[L];
   });
   for_links_reverse<S>([&](auto l) {

@@ -154,13 +154,6 @@ struct planar_joint {
   }
 };
 
-/// acc += v, or acc = v when nothing has been summed yet.
-template <bool Has, class V>
-void accumulate(V& acc, const V& v) {
-  if constexpr (Has) acc += v;
-  else acc = v;
-}
-
 template <int K, class T>
 vec2<T> in_plane(const Vec3d& x) {
   return {T(x((K + 1) % 3)), T(x((K + 2) % 3))};
@@ -269,15 +262,17 @@ void accelerations_planar(const S& scene, const T& t, const T* q, const T* qd, T
     // f = m·a + ω̇ × h − ω²·h and n = h × a + I_kk·ω̇ (zero where the flags say).
     constexpr bool f_a = !PF.a_zero[L], f_wd = !F.wd_zero[L], f_w = !F.w_zero[L];
     if constexpr (F.need_f[L]) {
+      constexpr bool g_wd = f_wd && !F.h_zero[L], g_w = f_w && !F.h_zero[L];
       if constexpr (f_a) c.f = T(I.m) * c.a;
-      if constexpr (f_wd) accumulate<f_a>(c.f, perp(c.wd, h));
-      if constexpr (f_w) accumulate<f_a || f_wd>(c.f, (-c.w * c.w) * h);
-      if constexpr (!(f_a || f_wd || f_w)) c.f = {T(0), T(0)};
+      if constexpr (g_wd) accumulate<f_a>(c.f, perp(c.wd, h));
+      if constexpr (g_w) accumulate<f_a || g_wd>(c.f, (-c.w * c.w) * h);
+      if constexpr (!(f_a || g_wd || g_w)) c.f = {T(0), T(0)};
       if constexpr (F.has_ext_f[L]) c.f = c.f - f_ext[L];
     }
-    if constexpr (f_a) c.n = cross2(h, c.a);
-    if constexpr (f_wd) accumulate<f_a>(c.n, T(I.I(K, K)) * c.wd);
-    if constexpr (!(f_a || f_wd)) c.n = T(0);
+    constexpr bool n_a = f_a && !F.h_zero[L], n_wd = f_wd && F.I_kind[L] > 0;
+    if constexpr (n_a) c.n = cross2(h, c.a);
+    if constexpr (n_wd) accumulate<n_a>(c.n, T(I.I(K, K)) * c.wd);
+    if constexpr (!(n_a || n_wd)) c.n = T(0);
     if constexpr (F.has_ext[L]) c.n -= n_ext[L];
   });
   std::array<T, N> r;

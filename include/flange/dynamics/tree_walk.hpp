@@ -6,6 +6,7 @@
 
 #include "flange/components/frame_kinematics.hpp"
 #include "flange/dynamics/joint_transform.hpp"
+#include "flange/math/axial.hpp"
 #include "flange/errors.hpp"
 
 namespace flange::detail {
@@ -70,6 +71,8 @@ struct link_flags {
     std::array<bool, NL> has_ext{};   ///< a force element acts on the link (a torque about its origin)
     std::array<bool, NL> has_ext_f{}; ///< … with a force (line forces, world forces)
     std::array<bool, NL> need_f{};    ///< the link force f is used (prismatic joint, or passed to a parent)
+    std::array<int, NL> I_kind{};     ///< the link's own rotational inertia about its origin: 0 zero, 1 diagonal, 2 dense
+    std::array<bool, NL> h_zero{};    ///< the link's own first moment m·c is zero (all its mass at its origin)
     std::array<int, NL> w_axis{};     ///< ω is axial along this coordinate axis (−1: dense)
     std::array<int, NL> wd_axis{};    ///< ω̇ (q̈ = 0) is axial along this coordinate axis (−1: dense)
   };
@@ -122,9 +125,45 @@ struct link_flags {
           ...);
     }(std::make_integer_sequence<int, S::n_components>{});
     t.has_ext[0] = t.has_ext_f[0] = false;  // the World takes what it is given
+    // Inertia structure from the bodies' types: a body at its link's origin
+    // (on the link's root connection set, no centre-of-mass offset) adds
+    // nothing to h and its own J to I; anything else makes both dense.
+    for (int L = 0; L < NL; ++L) t.h_zero[L] = true;
+    [&]<int... C>(std::integer_sequence<int, C...>) {
+      (
+          [&] {
+            using Comp = typename S::template component_type<C>;
+            if constexpr (Comp::kind == role::body) {
+              const int set = S::topology.set_of[S::table.frame_base[C]];
+              const int L = S::tree.set_link[set];
+              if (L < 0) return;
+              const bool at_origin = S::tree.set_parent[set] < 0 && !Comp::has_cm_offset;
+              const int kind = !at_origin ? 2 : Comp::is_point ? 0 : Comp::is_diagonal ? 1 : 2;
+              t.I_kind[L] = kind > t.I_kind[L] ? kind : t.I_kind[L];
+              t.h_zero[L] = t.h_zero[L] && at_origin;
+            }
+          }(),
+          ...);
+    }(std::make_integer_sequence<int, S::n_components>{});
     return t;
   }();
 };
+
+/// acc += v, or acc = v when nothing has been summed yet: adding to a zero
+/// the compiler cannot see (IEEE: 0 + −0 = +0) costs as much as any term.
+template <bool Has, class V>
+void accumulate(V& acc, const V& v) {
+  if constexpr (Has) acc += v;
+  else acc = v;
+}
+
+/// I·v for a link's own inertia whose structure link_flags know: nothing for
+/// zero, three products for diagonal.
+template <int Kind, class T, class M, class V>
+Vec3<T> inertia_times(const M& I, const V& v) {
+  if constexpr (Kind == 1) return I.diagonal().cwiseProduct(dense(v));
+  else return mul<T>(I, v);
+}
 
 /// f(integral_constant<L>) for L = 1 … n_links−1, parents first.
 template <class S, class F>
