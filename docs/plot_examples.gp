@@ -1,6 +1,7 @@
 # Plots the example trajectories for the README and docs/.
 #   build/examples/robot_arm --csv docs/robot_arm.csv
 #   build/examples/gantry_crane --csv docs/gantry_crane.csv
+#   build/examples/buffered_crane --csv docs/buffered_crane.csv
 #   gnuplot docs/plot_examples.gp        (from the repository root)
 set datafile separator ","
 set terminal pngcairo size 900,640 font "DejaVu Sans,10" noenhanced
@@ -31,4 +32,17 @@ set ylabel "force [N]"
 set xlabel "t [s]"
 plot "docs/gantry_crane.csv" using 1:6 with lines lw 2 title "push f", \
      "" using 1:8 with lines lw 1 title "rope tension"
+unset multiplot
+
+# build/examples/buffered_crane --csv docs/buffered_crane.csv
+set output "docs/buffered_crane.png"
+unset xlabel
+set multiplot layout 3,1 title "flange buffered crane: a gust on the load, rail friction, a spring-damper buffer"
+set ylabel "s [m]"
+plot "docs/buffered_crane.csv" using 1:2 with lines lw 2 title "cart position s"
+set ylabel "θ [deg]"
+plot "docs/buffered_crane.csv" using 1:($3*180/pi) with lines lw 2 title "load angle θ"
+set ylabel "force [N]"
+set xlabel "t [s]"
+plot "docs/buffered_crane.csv" using 1:7 with lines lw 2 title "buffer tension f"
 unset multiplot
