@@ -118,7 +118,7 @@ struct link_flags {
               if constexpr (force_acts<S, C>())
                 for (int l : force_links<S, C>()) {
                   t.has_ext[l] = true;
-                  if constexpr (Comp::needs_motion) t.has_ext_f[l] = true;
+                  if constexpr (Comp::exerts_force) t.has_ext_f[l] = true;
                 }
             }
           }(),
@@ -219,13 +219,23 @@ std::array<frame_kinematics<T>, S::tree.n_links> link_motion(const S& scene, con
     const auto& P = lk[LI::parent];
     auto& c = lk[L];
     const Vec3<T> p = scene.model().set_offset[LI::parent_set].template cast<T>() + xj.p();
-    Vec3<T> pv = P.w.cross(p);
-    if constexpr (XF::translates) pv += xj.axis(qd[LI::q]);
-    c.R = xj.matrix() * P.R;
-    c.r = P.r + P.R.transpose() * p;
-    c.v = P.v + P.R.transpose() * pv;
-    c.w = xj.rot(P.w);
-    if constexpr (XF::rotates) c.w += xj.axis(qd[LI::q]);
+    if constexpr (LI::parent == 0) {
+      // On the World: R_P = 1, r_P = ṙ_P = ω_P = 0.
+      c.R = xj.matrix();
+      c.r = p;
+      if constexpr (XF::translates) c.v = xj.axis(qd[LI::q]);
+      else c.v.setZero();
+      if constexpr (XF::rotates) c.w = xj.axis(qd[LI::q]);
+      else c.w.setZero();
+    } else {
+      Vec3<T> pv = P.w.cross(p);
+      if constexpr (XF::translates) pv += xj.axis(qd[LI::q]);
+      c.R = xj.matrix() * P.R;
+      c.r = P.r + P.R.transpose() * p;
+      c.v = P.v + P.R.transpose() * pv;
+      c.w = xj.rot(P.w);
+      if constexpr (XF::rotates) c.w += xj.axis(qd[LI::q]);
+    }
   });
   return lk;
 }
@@ -256,19 +266,29 @@ void gather_external(const S& scene, const T& t, const joint_state<T>& x, const 
               for (int k = 0; k < nf; ++k) {
                 const auto& L = lk[links[k]];
                 p[k] = scene.model().set_offset[S::topology.set_of[S::table.frame_base[C] + k]].template cast<T>();
-                fk[k].R = L.R;
-                fk[k].w = L.w;
-                fk[k].r = L.r + L.R.transpose() * p[k];
-                fk[k].v = L.v + L.R.transpose() * L.w.cross(p[k]);
+                if (links[k] == 0) {  // a frame on the World: at rest, unturned
+                  fk[k].R.setIdentity();
+                  fk[k].w.setZero();
+                  fk[k].r = p[k];
+                  fk[k].v.setZero();
+                } else {
+                  fk[k].R = L.R;
+                  fk[k].w = L.w;
+                  fk[k].r = L.r + L.R.transpose() * p[k];
+                  fk[k].v = L.v + L.R.transpose() * L.w.cross(p[k]);
+                }
               }
               std::array<wrench<T>, nf> on;
               scene.template component<C>().wrenches(t, x, fk.data(), on.data());
               for (int k = 0; k < nf; ++k) {
                 const int l = links[k];
                 if (l == 0) continue;
-                const Vec3<T> f = lk[l].R * on[k].f;
-                n_ext[l] += lk[l].R * on[k].n + p[k].cross(f);
-                if constexpr (Comp::needs_motion) f_ext[l] += f;
+                if constexpr (Comp::exerts_force) {
+                  const Vec3<T> f = lk[l].R * on[k].f;
+                  f_ext[l] += f;
+                  n_ext[l] += p[k].cross(f);
+                }
+                if constexpr (Comp::exerts_torque) n_ext[l] += lk[l].R * on[k].n;
               }
             }
           }(),

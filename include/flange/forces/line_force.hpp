@@ -64,6 +64,8 @@ class LineForce {
   static constexpr bool needs_motion = true;
   /// Acts along a line between two frames, so both ends must be apart.
   static constexpr bool line_of_action = true;
+  /// What it exerts: a force along its line, no torque.
+  static constexpr bool exerts_force = true, exerts_torque = false;
   static constexpr bool has_spring = !std::is_same_v<Law, line_law::damper>;
   static constexpr bool has_damper = !std::is_same_v<Law, line_law::spring>;
 

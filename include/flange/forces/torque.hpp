@@ -25,6 +25,7 @@ class Torque {
   static constexpr std::array<internal_decl, 0> internals{};
   static constexpr bool needs_motion = false;  // a pure torque: the link rotations suffice
   static constexpr bool line_of_action = false;
+  static constexpr bool exerts_force = false, exerts_torque = true;
 
   struct params {
     In M_ext;

@@ -41,6 +41,7 @@ class WorldLoad {
   static constexpr std::array<internal_decl, 0> internals{};
   static constexpr bool needs_motion = true;  // the frame's orientation and offset
   static constexpr bool line_of_action = false;
+  static constexpr bool exerts_force = is_force, exerts_torque = !is_force;
 
   struct params {
     In value;  ///< f_ext [N] or τ_ext [N m]
