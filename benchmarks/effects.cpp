@@ -24,6 +24,7 @@
 
 #include <benchmark/benchmark.h>
 #include <flange/flange.hpp>
+#include <flange/models/gimbal.hpp>
 
 #include "handwritten.hpp"
 
@@ -98,26 +99,6 @@ template <class Gravity = gravity_kind::uniform, class Law = axis_law::none, tem
           class Inertia = inertia_kind::full>
 auto chain6() {
   return models::chain<NC, Axes, Law, Gravity, Inertia>(chain_p());
-}
-
-/// A spatial gimbal (axes x, y, z) whose bodies sit at their links' origins,
-/// where a body's inertia type tells the dynamics what its link's inertia is.
-template <class I1, class I2>
-auto gimbal3() {
-  auto body = [](auto b, const Vec3d& Jd) {
-    using B = decltype(b);
-    if constexpr (B::is_point) return B({.m = 0.7});
-    else return B({.m = 0.7, .J = Jd.asDiagonal()});
-  };
-  return scene(World<"world">{}, Revolute<"j0", axis::x>{}, Revolute<"j1", axis::y>{}, Revolute<"j2", axis::z>{},
-               body(Body<"b0", cm::at_frame, I1>({.m = 1}), Vec3d(0.02, 0.03, 0.04)),
-               body(Body<"b1", cm::at_frame, I2>({.m = 1}), Vec3d(0.05, 0.01, 0.05)),
-               body(Body<"b2", cm::at_frame, I1>({.m = 1}), Vec3d(0.03, 0.03, 0.02)),
-               FixedTranslation<"r0">({.d = {0.3, 0.1, 0.0}}), FixedTranslation<"r1">({.d = {0.2, -0.1, 0.4}}),
-               connect<"world.frame_b", "j0.frame_a">, connect<"j0.frame_b", "b0.frame_a">,
-               connect<"j0.frame_b", "r0.frame_a">, connect<"r0.frame_b", "j1.frame_a">,
-               connect<"j1.frame_b", "b1.frame_a">, connect<"j1.frame_b", "r1.frame_a">,
-               connect<"r1.frame_b", "j2.frame_a">, connect<"j2.frame_b", "b2.frame_a">);
 }
 
 /// The same scene through the spatial algorithm, whatever its type selects.
@@ -220,8 +201,8 @@ void register_all() {
 
   const std::array<double, 6> xg{0.3, -0.5, 0.8, 0.4, 0.2, -0.6};
   using inertia_kind::diagonal, inertia_kind::full, inertia_kind::point;
-  effect("gimbal3", "rigid_body", gimbal3<full, full>(), gimbal3<full, point>(), nullptr, xg);
-  effect("gimbal3", "dense_inertia", gimbal3<full, full>(), gimbal3<diagonal, diagonal>(), nullptr, xg);
+  effect("gimbal3", "rigid_body", models::gimbal<full, full>(), models::gimbal<full, point>(), nullptr, xg);
+  effect("gimbal3", "dense_inertia", models::gimbal<full, full>(), models::gimbal<diagonal, diagonal>(), nullptr, xg);
 }
 
 struct median_reporter : benchmark::ConsoleReporter {

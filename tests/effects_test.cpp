@@ -3,6 +3,7 @@
 // against its general form (the same numbers to round-off).
 #include <catch2/catch.hpp>
 #include <flange/flange.hpp>
+#include <flange/models/gimbal.hpp>
 #include <flange/simulate/odeint.hpp>
 
 #include "consistency.hpp"
@@ -172,32 +173,10 @@ TEST_CASE("a prismatic joint's spring-damper and friction laws against closed fo
                     Catch::Contains("Prismatic \"rail\": spring-damper c = -2"));
 }
 
-namespace {
-/// A spatial gimbal (axes x, y, z) whose bodies sit at their links' origins:
-/// the first and last with inertias of kind I1, the middle one of kind I2
-/// with inertia J1 (when I2 is not a point).
-template <class I1, class I2>
-auto gimbal(const Vec3d& J1 = Vec3d::Zero()) {
-  auto body = [](auto b, const Vec3d& Jd) {
-    using B = decltype(b);
-    if constexpr (B::is_point) return B({.m = 0.7});
-    else return B({.m = 0.7, .J = Jd.asDiagonal()});
-  };
-  return scene(World<"world">{}, Revolute<"j0", axis::x>{}, Revolute<"j1", axis::y>{}, Revolute<"j2", axis::z>{},
-               body(Body<"b0", cm::at_frame, I1>({.m = 1}), Vec3d(0.02, 0.03, 0.04)),
-               body(Body<"b1", cm::at_frame, I2>({.m = 1}), J1),
-               body(Body<"b2", cm::at_frame, I1>({.m = 1}), Vec3d(0.03, 0.03, 0.02)),
-               FixedTranslation<"r0">({.d = {0.3, 0.1, 0.0}}), FixedTranslation<"r1">({.d = {0.2, -0.1, 0.4}}),
-               connect<"world.frame_b", "j0.frame_a">, connect<"j0.frame_b", "b0.frame_a">,
-               connect<"j0.frame_b", "r0.frame_a">, connect<"r0.frame_b", "j1.frame_a">,
-               connect<"j1.frame_b", "b1.frame_a">, connect<"j1.frame_b", "r1.frame_a">,
-               connect<"r1.frame_b", "j2.frame_a">, connect<"j2.frame_b", "b2.frame_a">);
-}
-}  // namespace
-
 TEST_CASE("bodies at their links' origins: diagonal and point inertias known from the type give the general numbers") {
-  const auto typed = gimbal<inertia_kind::diagonal, inertia_kind::point>();
-  const auto general = gimbal<inertia_kind::full, inertia_kind::full>();  // the same J, and J = 0, as values
+  const auto typed = models::gimbal<inertia_kind::diagonal, inertia_kind::point>();
+  // The same J, and J = 0, as values.
+  const auto general = models::gimbal<inertia_kind::full, inertia_kind::full>(Vec3d::Zero());
   using F = detail::link_flags<std::remove_cvref_t<decltype(typed)>>;
   STATIC_REQUIRE(F::value.I_kind[1] == 1);  // diagonal
   STATIC_REQUIRE(F::value.I_kind[2] == 0);  // a point mass at the origin: no rotational inertia

@@ -20,5 +20,6 @@
 #include "flange/simulate/odeint.hpp"
 #include "flange/models/paper.hpp"
 #include "flange/models/chain.hpp"
+#include "flange/models/gimbal.hpp"
 #include "flange/simulate/jacobian.hpp"
 #include "flange/simulate/checked.hpp"
