@@ -21,5 +21,6 @@
 #include "flange/models/paper.hpp"
 #include "flange/models/chain.hpp"
 #include "flange/models/gimbal.hpp"
+#include "flange/models/tree.hpp"
 #include "flange/simulate/jacobian.hpp"
 #include "flange/simulate/checked.hpp"

@@ -56,7 +56,7 @@ void print_equations(const S& scene, std::ostream& os) {
   }(std::make_integer_sequence<int, S::n_components>{});
   os << "connections\n";
   for (int s = 0; s < topo.n_sets; ++s) {
-    int members[64], k = 0;
+    int members[S::n_frames], k = 0;
     for (int i = 0; i < S::n_frames; ++i)
       if (topo.set_of[topo.by_number[i]] == s) members[k++] = i + 1;
     for (const char* v : {"r", "R"})

@@ -49,7 +49,8 @@ struct topology {
   }
 };
 
-constexpr int find_root(std::array<int, 64>& p, int i) {
+template <std::size_t M>
+constexpr int find_root(std::array<int, M>& p, int i) {
   while (p[i] != i) i = p[i] = p[p[i]];
   return i;
 }
@@ -68,7 +69,6 @@ constexpr int find_frame(const scene_table<NC, NF, NK>& t, std::string_view s) {
 
 template <int NC, int NF, int NK>
 constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
-  static_assert(NF <= 64, "flange: scenes have at most 64 frames for now");
   topology<NC, NF, NK> r{};
   for (int c = 0; c < NC; ++c) {
     for (int d = 0; d < c; ++d)
@@ -78,7 +78,7 @@ constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
       else if (r.second_world < 0) r.second_world = c;
     }
   }
-  std::array<int, 64> parent{};
+  std::array<int, NF> parent{};
   for (int f = 0; f < NF; ++f) parent[f] = f;
   for (int k = 0; k < NK; ++k) {
     const int a = find_frame(t, t.conn_a[k]), b = find_frame(t, t.conn_b[k]);
@@ -116,7 +116,7 @@ constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
   }
   for (int f = 0; f < NF; ++f) give(f);
   // Sets in the order of their lowest-numbered frame.
-  std::array<int, 64> set_of_root{};
+  std::array<int, NF> set_of_root{};
   for (auto& s : set_of_root) s = -1;
   for (int i = 0; i < NF; ++i) {
     const int f = r.by_number[i];
@@ -188,8 +188,8 @@ constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topolo
   // Loops first, by union–find over joints and rigid edges in scene order: the
   // edge that closes a loop is the last one written, which is the one to name.
   {
-    std::array<int, 64> uf{};
-    for (int i = 0; i < 64; ++i) uf[i] = i;
+    std::array<int, NF> uf{};
+    for (int i = 0; i < NF; ++i) uf[i] = i;
     for (int e = 0; e < NC; ++e) {
       if (t.kinds[e] != role::joint && t.kinds[e] != role::rigid) continue;
       const int a = find_root(uf, topo.set_of[t.frame_base[e]]), b = find_root(uf, topo.set_of[t.frame_base[e] + 1]);
