@@ -205,6 +205,44 @@ TEST_CASE("extreme parameters stay finite and agree with the closed forms", "[ha
   }
 }
 
+namespace {
+/// Integrates a chaotic scene in double (dopri5, 1e-13) and long double
+/// (1e-18) for 20 s: the energy error, consistency along the way, and when
+/// the double solve leaves the long-double one by 1e-3 rad.
+template <class S, class X, class L>
+void chaotic(const S& s, X x, L xl, const char* what) {
+  const double e0 = recover(s, 0.0, x).energy();
+  double worst_energy = 0, first_divergence = -1;
+  test::consistency c;
+  auto st = odeint::make_dense_output(1e-13, 1e-13, odeint::runge_kutta_dopri5<X>());
+  auto stl = odeint::make_dense_output<odeint::runge_kutta_dopri5<L, long double>>(1e-18L, 1e-18L);
+  st.initialize(x, 0.0, 1e-4);
+  stl.initialize(xl, 0.0L, 1e-4L);
+  constexpr int n = S::n_q;
+  for (int k = 1; k <= 2000; ++k) {  // every 10 ms for 20 s
+    const double t = 0.01 * k;
+    while (st.current_time() < t) st.do_step(s);
+    while (stl.current_time() < t) stl.do_step(s);
+    st.calc_state(t, x);
+    stl.calc_state(t, xl);
+    worst_energy = std::max(worst_energy, std::abs(recover(s, t, x).energy() - e0) / std::abs(e0));
+    if (k % 50 == 0) c.sample(s, t, x);
+    double diff = 0;
+    for (int i = 0; i < n; ++i) diff = std::max(diff, std::abs(x[i] - static_cast<double>(xl[i])));
+    if (diff > 1e-3 && first_divergence < 0) first_divergence = t;
+  }
+  INFO(what << ": worst relative energy error " << worst_energy
+            << "; double leaves the long-double solve (by 1e-3 rad) at t = " << first_divergence);
+  CHECK(worst_energy < 1e-10);
+  CHECK(c.orthogonality <= 1e-12);
+  CHECK(c.residual <= 1e-9);
+  CHECK(c.algorithms <= 1e-10);
+  // Errors of ~1e-13 grow like e^{λt}; with λ of a few 1/s they reach 1e-3 rad
+  // after ln(1e10)/λ ≈ 5–10 s. Agreement is required up to 4 s.
+  CHECK((first_divergence < 0 || first_divergence > 4.0));
+}
+}  // namespace
+
 TEST_CASE("a chaotic double pendulum conserves energy and follows the long-double solve to a justified horizon", "[hard]") {
   models::chain_params<2> p;
   for (int i = 0; i < 2; ++i) {
@@ -214,38 +252,25 @@ TEST_CASE("a chaotic double pendulum conserves energy and follows the long-doubl
     p.J[i] = Vec3d(0.001, 0.002, 0.002).asDiagonal();
   }
   const auto dp = models::chain<2, models::planar_axes>(p);
-  using X = std::array<double, 4>;
-  using L = std::array<long double, 4>;
-  X x{2.0, 2.5, 0.0, 0.0};  // both links high: chaotic
-  L xl{2.0L, 2.5L, 0.0L, 0.0L};
-  const double e0 = recover(dp, 0.0, x).energy();
-  double worst_energy = 0, first_divergence = -1;
-  test::consistency c;
-  auto st = odeint::make_dense_output(1e-13, 1e-13, odeint::runge_kutta_dopri5<X>());
-  auto stl = odeint::make_dense_output<odeint::runge_kutta_dopri5<L, long double>>(1e-18L, 1e-18L);
-  st.initialize(x, 0.0, 1e-4);
-  stl.initialize(xl, 0.0L, 1e-4L);
-  for (int k = 1; k <= 2000; ++k) {  // every 10 ms for 20 s
-    const double t = 0.01 * k;
-    while (st.current_time() < t) st.do_step(dp);
-    while (stl.current_time() < t) stl.do_step(dp);
-    st.calc_state(t, x);
-    stl.calc_state(t, xl);
-    worst_energy = std::max(worst_energy, std::abs(recover(dp, t, x).energy() - e0) / std::abs(e0));
-    if (k % 50 == 0) c.sample(dp, t, x);
-    double diff = 0;
-    for (int i = 0; i < 2; ++i) diff = std::max(diff, std::abs(x[i] - static_cast<double>(xl[i])));
-    if (diff > 1e-3 && first_divergence < 0) first_divergence = t;
-  }
-  INFO("worst relative energy error " << worst_energy << "; double leaves the long-double solve (by 1e-3 rad) at t = "
-                                      << first_divergence);
-  CHECK(worst_energy < 1e-10);
-  CHECK(c.orthogonality <= 1e-12);
-  CHECK(c.residual <= 1e-9);
-  CHECK(c.algorithms <= 1e-10);
-  // Errors of ~1e-13 grow like e^{λt}; with λ of a few 1/s they reach 1e-3 rad
-  // after ln(1e10)/λ ≈ 5–10 s. Agreement is required up to 4 s.
-  CHECK((first_divergence < 0 || first_divergence > 4.0));
+  chaotic(dp, std::array<double, 4>{2.0, 2.5, 0.0, 0.0}, std::array<long double, 4>{2.0L, 2.5L, 0.0L, 0.0L},
+          "double pendulum");  // both links high: chaotic
+}
+
+TEST_CASE("a chaotic branched pendulum (two pendulums on one) does the same", "[hard]") {
+  // A "Y": one link on the World, two links on its tip, all turning about z.
+  const auto y = scene(World<"world">{}, Revolute<"j0", axis::z>{}, FixedTranslation<"r0">({.d = {0.5, 0, 0}}),
+                       Body<"b0">({.m = 1.0, .J = Vec3d(0.001, 0.002, 0.002).asDiagonal()}),
+                       Revolute<"j1", axis::z>{}, FixedTranslation<"r1">({.d = {0.4, 0, 0}}),
+                       Body<"b1">({.m = 0.7, .J = Vec3d(0.001, 0.002, 0.002).asDiagonal()}),
+                       Revolute<"j2", axis::z>{}, FixedTranslation<"r2">({.d = {0.3, 0.1, 0}}),
+                       Body<"b2">({.m = 0.5, .J = Vec3d(0.001, 0.002, 0.002).asDiagonal()}),
+                       connect<"world.frame_b", "j0.frame_a">, connect<"j0.frame_b", "r0.frame_a">,
+                       connect<"r0.frame_b", "b0.frame_a">, connect<"r0.frame_b", "j1.frame_a">,
+                       connect<"r0.frame_b", "j2.frame_a">, connect<"j1.frame_b", "r1.frame_a">,
+                       connect<"r1.frame_b", "b1.frame_a">, connect<"j2.frame_b", "r2.frame_a">,
+                       connect<"r2.frame_b", "b2.frame_a">);
+  chaotic(y, std::array<double, 6>{2.0, 2.5, -1.0, 0.0, 0.0, 0.0},
+          std::array<long double, 6>{2.0L, 2.5L, -1.0L, 0.0L, 0.0L, 0.0L}, "branched pendulum");
 }
 
 TEST_CASE("the free arm over 10⁴ periods: energy drift stays bounded with dopri5 at 1e-10", "[hard]") {

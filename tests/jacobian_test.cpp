@@ -79,6 +79,15 @@ TEST_CASE("the dual-number Jacobian matches finite differences") {
       check_jacobian(chain, 0.0, x);
     }
   }
+  SECTION("branched spatial tree with every joint and force element") {
+    constexpr auto shape = models::random_tree_shape(3, 8, false);
+    const auto tree = models::tree<shape>(test::tree_params<shape.n>(rng));
+    for (int k = 0; k < 5; ++k) {
+      decltype(tree)::state_type x;
+      for (auto& v : x) v = test::uniform(rng, -1, 1);
+      check_jacobian(tree, 0.0, x);
+    }
+  }
 }
 
 TEST_CASE("rosenbrock4 with the exact Jacobian converges to the tight reference") {

@@ -20,6 +20,22 @@ TEST_CASE("the derivative in long double agrees with double") {
   }
 }
 
+TEST_CASE("the derivative of a branched tree in long double agrees with double") {
+  std::mt19937 rng(10);
+  constexpr auto shape = models::random_tree_shape(3, 8, false);
+  const auto tree = models::tree<shape>(test::tree_params<shape.n>(rng));
+  constexpr int n = 2 * shape.n;
+  for (int k = 0; k < 20; ++k) {
+    std::array<double, n> x, dx;
+    std::array<long double, n> xl, dxl;
+    for (int i = 0; i < n; ++i) xl[i] = x[i] = test::uniform(rng, -1, 1);
+    tree(x, dx, 0.0);
+    tree(xl, dxl, 0.0L);
+    for (int i = shape.n; i < n; ++i)
+      CHECK(std::abs(static_cast<double>(dxl[i]) - dx[i]) <= 1e-12 * (1 + std::abs(dx[i])));
+  }
+}
+
 TEST_CASE("a long-double simulation conserves energy better than double can") {
   const auto arm = models::robot_arm();
   using L = std::array<long double, 2>;

@@ -1,7 +1,14 @@
-// No heap allocation in the derivative, the residual, or the stepping loop.
-// Two independent guards: Eigen's EIGEN_RUNTIME_NO_MALLOC assertion, and a
-// replaced global operator new that counts every allocation in the process.
-#define EIGEN_RUNTIME_NO_MALLOC
+// No heap allocation in the derivative, the residual, recovery, the Jacobian,
+// the checked system, or any stepping loop once its stepper exists.
+//
+// The counter sees every way to the heap:
+//   * malloc, calloc, realloc, aligned_alloc and posix_memalign, wrapped at
+//     link time (-Wl,--wrap=…, see CMakeLists.txt): Eigen allocates through
+//     these, and EIGEN_RUNTIME_NO_MALLOC, an assertion, is gone in Release;
+//   * every replaceable operator new and delete (plain, array, nothrow,
+//     aligned), replaced to go through malloc and free: one allocator for all,
+//     so AddressSanitizer sees matching pairs.
+// A test shows the counter sees an Eigen dynamic vector in Release.
 #include <atomic>
 #include <cstdlib>
 #include <new>
@@ -10,6 +17,8 @@
 #include <flange/dynamics/articulated_body.hpp>
 #include <flange/forces/line_force.hpp>
 #include <flange/forces/world_force.hpp>
+#include <flange/simulate/checked.hpp>
+#include <flange/simulate/jacobian.hpp>
 #include <flange/simulate/odeint.hpp>
 
 #include "random_params.hpp"
@@ -17,91 +26,236 @@
 namespace {
 std::atomic<long> allocations{0};
 }
-void* operator new(std::size_t n) {
+
+extern "C" {
+void* __real_malloc(std::size_t);
+void* __real_calloc(std::size_t, std::size_t);
+void* __real_realloc(void*, std::size_t);
+void* __real_aligned_alloc(std::size_t, std::size_t);
+int __real_posix_memalign(void**, std::size_t, std::size_t);
+void* __wrap_malloc(std::size_t n) {
   ++allocations;
-  if (void* p = std::malloc(n ? n : 1)) return p;
+  return __real_malloc(n);
+}
+void* __wrap_calloc(std::size_t k, std::size_t n) {
+  ++allocations;
+  return __real_calloc(k, n);
+}
+void* __wrap_realloc(void* p, std::size_t n) {
+  ++allocations;
+  return __real_realloc(p, n);
+}
+void* __wrap_aligned_alloc(std::size_t a, std::size_t n) {
+  ++allocations;
+  return __real_aligned_alloc(a, n);
+}
+int __wrap_posix_memalign(void** p, std::size_t a, std::size_t n) {
+  ++allocations;
+  return __real_posix_memalign(p, a, n);
+}
+}
+
+namespace {
+void* allocate(std::size_t n) { return std::malloc(n ? n : 1); }
+void* allocate(std::size_t n, std::align_val_t a) {
+  const std::size_t al = std::max(static_cast<std::size_t>(a), sizeof(void*));
+  void* p = nullptr;
+  return posix_memalign(&p, al, n ? n : 1) == 0 ? p : nullptr;
+}
+template <class... A>
+void* allocate_or_throw(std::size_t n, A... a) {
+  if (void* p = allocate(n, a...)) return p;
   throw std::bad_alloc();
 }
+}  // namespace
+
+void* operator new(std::size_t n) { return allocate_or_throw(n); }
+void* operator new[](std::size_t n) { return allocate_or_throw(n); }
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return allocate(n); }
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return allocate(n); }
+void* operator new(std::size_t n, std::align_val_t a) { return allocate_or_throw(n, a); }
+void* operator new[](std::size_t n, std::align_val_t a) { return allocate_or_throw(n, a); }
+void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept { return allocate(n, a); }
+void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept { return allocate(n, a); }
 void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
 
 using namespace flange;
 
 namespace {
-/// Runs f with Eigen's heap forbidden and returns how many allocations it made.
+/// How many allocations f makes.
 template <class F>
 long count_allocations(F&& f) {
   const long before = allocations;
-  Eigen::internal::set_is_malloc_allowed(false);
   f();
-  Eigen::internal::set_is_malloc_allowed(true);
   return allocations - before;
+}
+
+/// A branched tree with every joint and force element (tests/tree_test.cpp).
+constexpr auto tree_shape = models::random_tree_shape(3, 8, false);
+
+auto sprung_arm() {
+  // Line forces and world loads take the position pass; friction a tanh.
+  return scene(World<"world">{}, Revolute<"joint", axis::z, axis_law::friction>({.d = 0.1, .f_c = 0.2}),
+               FixedTranslation<"rod">({.d = {0.5, 0, 0}}), Body<"mass">({.m = 1.0}),
+               SpringDamper<"spring">({.c = 20, .s0 = 0.1, .d = 0.3}), WorldForce<"push">({.value = Vec3d(1, 0, 0)}),
+               connect<"world.frame_b", "joint.frame_a">, connect<"joint.frame_b", "rod.frame_a">,
+               connect<"rod.frame_b", "mass.frame_a">, connect<"world.frame_b", "spring.frame_a">,
+               connect<"rod.frame_b", "spring.frame_b">, connect<"rod.frame_b", "push.frame_b">);
 }
 }  // namespace
 
-TEST_CASE("the derivative allocates nothing") {
+TEST_CASE("the allocation counter sees operator new, malloc and Eigen's dynamic vectors") {
+  // The guard can fail. (Through volatile pointers: a bare pair may be elided.)
+  CHECK(count_allocations([] {
+          int* volatile p = new int(1);
+          delete p;
+        }) == 1);
+  CHECK(count_allocations([] {
+          void* volatile p = std::malloc(64);
+          std::free(p);
+        }) == 1);
+  CHECK(count_allocations([] {
+          void* volatile p = ::operator new(64, std::nothrow);
+          ::operator delete(p, std::nothrow);
+        }) == 1);
+  // An Eigen::VectorXd in a derivative would be caught in Release, where
+  // EIGEN_RUNTIME_NO_MALLOC's assertion is compiled out.
+  CHECK(count_allocations([] {
+          Eigen::VectorXd v = Eigen::VectorXd::Constant(100, 1.0);
+          volatile double s = v.sum();
+          (void)s;
+        }) >= 1);
+}
+
+TEST_CASE("the derivative allocates nothing: chains, a branched tree, line forces and world loads") {
   std::mt19937 rng(5);
   const auto arm = models::robot_arm({}, [](double t) { return Vec3d(0, 0, std::sin(t)); });
   const auto chain = models::chain<6, models::runtime_axes>(test::chain_params<6>(rng));
-  std::array<double, 2> x{0.1, 0.2}, dx;
+  const auto tree = models::tree<tree_shape>(test::tree_params<tree_shape.n>(rng));
+  const auto sprung = sprung_arm();
+  std::array<double, 2> x{0.1, 0.2}, dx, z{0.3, 0.4}, dz;
   std::array<double, 12> y{}, dy;
+  decltype(tree)::state_type w{}, dw;
   eigen_state<decltype(arm)> xe(0.1, 0.2), dxe;
-  // Line forces and world loads take the position pass; friction a tanh.
-  const auto sprung = scene(World<"world">{}, Revolute<"joint", axis::z, axis_law::friction>({.d = 0.1, .f_c = 0.2}),
-                            FixedTranslation<"rod">({.d = {0.5, 0, 0}}), Body<"mass">({.m = 1.0}),
-                            SpringDamper<"spring">({.c = 20, .s0 = 0.1, .d = 0.3}),
-                            WorldForce<"push">({.value = Vec3d(1, 0, 0)}), connect<"world.frame_b", "joint.frame_a">,
-                            connect<"joint.frame_b", "rod.frame_a">, connect<"rod.frame_b", "mass.frame_a">,
-                            connect<"world.frame_b", "spring.frame_a">, connect<"rod.frame_b", "spring.frame_b">,
-                            connect<"rod.frame_b", "push.frame_b">);
-  std::array<double, 2> z{0.3, 0.4}, dz;
+  for (auto& v : w) v = test::uniform(rng, -1, 1);
   CHECK(count_allocations([&] {
           for (int i = 0; i < 100; ++i) {
             sprung(z, dz, 0.0);
             arm(x, dx, 0.1 * i);
             arm(xe, dxe, 0.1 * i);
             chain(y, dy, 0.0);
+            tree(w, dw, 0.0);
             accelerations_articulated_body(chain, 0.0, y.data(), y.data() + 6, dy.data() + 6);
+            accelerations_articulated_body(tree, 0.0, w.data(), w.data() + tree_shape.n, dw.data() + tree_shape.n);
           }
         }) == 0);
 }
 
-TEST_CASE("the residual allocates nothing") {
+TEST_CASE("the residual, recovery, the Jacobian and the checked system allocate nothing") {
+  std::mt19937 rng(6);
   const auto arm = models::robot_arm();
-  const auto sol = recover(arm, 0.0, std::array<double, 2>{0.3, 0.1});
+  const auto tree = models::tree<tree_shape>(test::tree_params<tree_shape.n>(rng));
+  decltype(tree)::state_type w{}, dw;
+  for (auto& v : w) v = test::uniform(rng, -1, 1);
+  const std::array<double, 2> x{0.3, 0.1};
+  const auto sol = recover(arm, 0.0, x);
   double sum = 0;
-  CHECK(count_allocations([&] { sum += residual(arm, 0.0, sol.y, sol.yd).sum(); }) == 0);
+  budget b;
+  CHECK(count_allocations([&] {
+          sum += residual(arm, 0.0, sol.y, sol.yd).sum();
+          sum += recover(arm, 0.0, x).energy();
+          const auto s = recover(tree, 0.0, w);
+          sum += residual(tree, 0.0, s.y, s.yd).sum() + s.energy();
+          sum += jacobian(arm, 0.0, x).sum();
+          sum += jacobian_finite_difference(arm, 0.0, x).sum();
+          sum += jacobian(tree, 0.0, w).sum();
+          checked(tree, b)(w, dw, 0.0);
+          sum += dw[0];
+        }) == 0);
   CHECK(std::isfinite(sum));
 }
 
-TEST_CASE("stepping loops allocate nothing once the stepper exists") {
+TEST_CASE("every stepping loop allocates nothing once its stepper exists") {
   const auto crane = models::gantry_crane({}, [](double t) { return std::sin(t); });
   using X = decltype(crane)::state_type;
   using E = eigen_state<decltype(crane)>;
-  X x{0, -0.5, 0, 0};
-  odeint::runge_kutta4<X> rk4;
-  auto dopri = odeint::make_controlled(1e-10, 1e-10, odeint::runge_kutta_dopri5<X>());
-  odeint::runge_kutta4<E, double, E, double, odeint::vector_space_algebra> rk4e;
+  const X x0{0, -0.5, 0, 0};
+  X x = x0;
   E xe(0, -0.5, 0, 0);
-  // Steppers size their buffers on first use (odeint's resizer): do one step first.
+  odeint::euler<X> euler;
+  odeint::runge_kutta4<X> rk4;
+  odeint::runge_kutta4<E, double, E, double, odeint::vector_space_algebra> rk4e;
+  auto cash_karp = odeint::make_controlled(1e-10, 1e-10, odeint::runge_kutta_cash_karp54<X>());
+  auto dopri = odeint::make_controlled(1e-10, 1e-10, odeint::runge_kutta_dopri5<X>());
+  auto fehlberg = odeint::make_controlled(1e-10, 1e-10, odeint::runge_kutta_fehlberg78<X>());
+  auto dense = odeint::make_dense_output(1e-10, 1e-10, odeint::runge_kutta_dopri5<X>());
+  odeint::adams_bashforth_moulton<5, X> abm;
+  odeint::bulirsch_stoer<X> bs(1e-10, 1e-10);
+  odeint::bulirsch_stoer_dense_out<X> bs_dense(1e-10, 1e-10);
+  budget b;
+  // Steppers size their buffers on first use (Odeint's resizer); a multistep
+  // stepper fills its history then: one step of each first.
+  euler.do_step(crane, x, 0.0, 1e-3);
   rk4.do_step(crane, x, 0.0, 1e-3);
   rk4e.do_step(crane, xe, 0.0, 1e-3);
   double t = 0, dt = 1e-3;
+  cash_karp.try_step(crane, x, t, dt);
   dopri.try_step(crane, x, t, dt);
+  fehlberg.try_step(crane, x, t, dt);
+  dense.initialize(x, 0.0, 1e-3);
+  dense.do_step(crane);
+  double t_bs = 0, dt_bs = 1e-3;
+  bs.try_step(crane, x, t_bs, dt_bs);
+  bs_dense.initialize(x, 0.0, 1e-3);
+  bs_dense.do_step(crane);
+  double t_abm = 0;
+  abm.initialize(crane, x, t_abm, 1e-3);
+  X probe;
+  double energy = 0;
+  const std::array<double, 3> times{0.0, 0.05, 0.1};
   CHECK(count_allocations([&] {
-          for (int i = 0; i < 1000; ++i) {
-            rk4.do_step(crane, x, 0.0, 1e-3);
-            rk4e.do_step(crane, xe, 0.0, 1e-3);
+          for (int i = 0; i < 100; ++i) {
+            euler.do_step(crane, x, 0.0, 1e-4);
+            rk4.do_step(crane, x, 0.0, 1e-4);
+            rk4e.do_step(crane, xe, 0.0, 1e-4);
+            abm.do_step(crane, x, 0.0, 1e-4);
+            cash_karp.try_step(crane, x, t, dt);
+            dopri.try_step(crane, x, t, dt);
+            fehlberg.try_step(crane, x, t, dt);
+            dense.do_step(crane);
+            dense.calc_state(dense.current_time() - 0.5 * dense.current_time_step(), probe);
+            bs_dense.calc_state(bs_dense.current_time() - 0.5 * bs_dense.current_time_step(), probe);
+            rk4.do_step(checked(crane, b), x, 0.0, 1e-4);
           }
-          for (int i = 0; i < 1000; ++i) dopri.try_step(crane, x, t, dt);
+          // The integrate functions take their stepper by value: copies of
+          // fixed-size steppers stay on the stack.
+          X y = x0;
+          odeint::integrate_const(rk4, crane, y, 0.0, 0.1, 1e-3);
+          odeint::integrate_adaptive(dopri, crane, y, 0.0, 0.1, 1e-3);
+          odeint::integrate_times(dense, crane, y, times.begin(), times.end(), 1e-3, [](const X&, double) {});
+          odeint::integrate_n_steps(rk4, checked(crane, b), y, 0.0, 1e-3, 50);
+          odeint::integrate_const(dense, crane, y, 0.0, 0.1, 1e-2,
+                                  record(crane, [&](const auto& sol) { energy += sol.energy(); }));
         }) == 0);
-}
-
-TEST_CASE("the allocation counter sees allocations") {
-  // The guard can fail: an allocation inside it is counted.
-  // (Through a volatile pointer: a bare new/delete pair may be elided.)
-  CHECK(count_allocations([] {
-          int* volatile p = new int(1);
-          delete p;
-        }) == 1);
+  CHECK(std::isfinite(x[0] + xe(0) + probe[0] + energy));
+  // Odeint's Bulirsch–Stoer steppers make two std::vectors (h_opt and work,
+  // bulirsch_stoer.hpp) in every step attempt: theirs, not flange's, whose
+  // derivative adds none.
+  CHECK(count_allocations([&] {
+          for (int i = 0; i < 10; ++i) bs.try_step(crane, x, t_bs, dt_bs);
+        }) == 2 * 10);
+  CHECK(count_allocations([&] {
+          for (int i = 0; i < 10; ++i) bs_dense.do_step(crane);
+        }) == 2 * 10);
 }

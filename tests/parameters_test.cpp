@@ -28,7 +28,7 @@ TEST_CASE("a body refuses unphysical mass and inertia") {
 }
 
 TEST_CASE("joints refuse a zero or non-finite axis") {
-  CHECK_THROWS_WITH(Revolute<"elbow">({.n = {0, 0, 0}}), Contains("Revolute \"elbow\"") && Contains("length 0"));
+  CHECK_THROWS_WITH(Revolute<"elbow">({.n = {0, 0, 0}}), Contains("Revolute \"elbow\"") && Contains("is zero"));
   CHECK_THROWS_WITH(Revolute<"elbow">({.n = {not_a_number, 0, 1}}), Contains("Revolute \"elbow\"") && Contains("not finite"));
   CHECK_THROWS_WITH(Prismatic<"rail">({.n = {0, 0, 0}, .f = 0.0}), Contains("Prismatic \"rail\""));
   CHECK_THROWS_WITH(Prismatic<"rail">({.n = {1, 0, 0}, .f = not_a_number}), Contains("Prismatic \"rail\"") && Contains("f"));
@@ -64,4 +64,86 @@ TEST_CASE("a massless link in the middle of a chain names its joint") {
   const auto chain = models::chain<2, models::planar_axes>(p);
   std::array<double, 4> x{0.1, 0.2, 0.0, 0.0}, dx;
   CHECK_THROWS_WITH(chain(x, dx, 0.0), Contains("joint \"j1\" (q[1])"));
+}
+
+TEST_CASE("a branch that moves nothing names its joint") {
+  // A branched tree: "hip" carries two legs; the right leg's knee turns a
+  // point mass on its own axis, so it moves nothing. The other entries of
+  // the mass matrix (between the legs) are zero, not junk.
+  auto make = [](double m) {
+    return scene(World<"world">{}, Revolute<"hip", axis::z>{}, Body<"pelvis">({.m = 2.0, .J = Mat3d::Identity()}),
+                 FixedTranslation<"left">({.d = {0.3, 0, 0}}), FixedTranslation<"right">({.d = {-0.3, 0, 0}}),
+                 Revolute<"knee_l", axis::z>{}, Revolute<"knee_r", axis::z>{},
+                 FixedTranslation<"shin">({.d = {0, -0.5, 0}}), Body<"foot_l">({.m = 1.0}),
+                 PointMass<"foot_r">({.m = m}), connect<"world.frame_b", "hip.frame_a">,
+                 connect<"hip.frame_b", "pelvis.frame_a">, connect<"hip.frame_b", "left.frame_a">,
+                 connect<"hip.frame_b", "right.frame_a">, connect<"left.frame_b", "knee_l.frame_a">,
+                 connect<"right.frame_b", "knee_r.frame_a">, connect<"knee_l.frame_b", "shin.frame_a">,
+                 connect<"shin.frame_b", "foot_l.frame_a">, connect<"knee_r.frame_b", "foot_r.frame_a">);
+  };
+  std::array<double, 6> x{0.1, 0.2, 0.3, 0.0, 0.0, 0.0}, dx;
+  CHECK_THROWS_WITH(make(1.0)(x, dx, 0.0), Contains("joint \"knee_r\" (q[2])") && Contains("singular mass matrix"));
+}
+
+TEST_CASE("a point mass on a skew joint axis through it is a singular mass matrix, named with its cause") {
+  // The axis passes through the mass: turning the joint moves nothing. Its
+  // diagonal is round-off (~1e-17 of m·|d|²), which an absolute test takes for
+  // a mass: the relative test reports it.
+  const Vec3d n = Vec3d(1, 2, 3).normalized();
+  auto make = [&](const Vec3d& d) {
+    return scene(World<"world">{}, Revolute<"joint">({.n = n}), FixedTranslation<"rod">({.d = d}),
+                 PointMass<"mass">({.m = 1.0}), connect<"world.frame_b", "joint.frame_a">,
+                 connect<"joint.frame_b", "rod.frame_a">, connect<"rod.frame_b", "mass.frame_a">);
+  };
+  const auto skew = make(0.7 * n);
+  std::array<double, 2> x{0.5, 0.0}, dx;
+  CHECK_THROWS_WITH(skew(x, dx, 0.0), Contains("singular mass matrix") && Contains("joint \"joint\"") &&
+                                          Contains("passes through all the mass it moves") && Contains("t = 0"));
+  // 1e-4 m off the axis the joint is regular (its pivot is 1e-8 of the scale,
+  // far above the tolerance), and q̈ = M / (m·r²) holds to round-off amplified
+  // by that ratio.
+  const Vec3d off = n.cross(Vec3d::UnitX()).normalized() * 1e-4;
+  const auto near = scene(World<"world", gravity_kind::none>{}, Revolute<"joint">({.n = n}),
+                          Torque<"motor">({.M_ext = 3e-8 * n}), FixedTranslation<"rod">({.d = 0.7 * n + off}),
+                          PointMass<"mass">({.m = 1.0}), connect<"world.frame_b", "joint.frame_a">,
+                          connect<"world.frame_b", "motor.frame_a">, connect<"joint.frame_b", "rod.frame_a">,
+                          connect<"joint.frame_b", "motor.frame_b">, connect<"rod.frame_b", "mass.frame_a">);
+  near(x, dx, 0.0);
+  CHECK(dx[1] == Approx(3e-8 / 1e-8).epsilon(1e-6));
+}
+
+TEST_CASE("axes of any finite length are normalised without overflow or underflow") {
+  CHECK((Revolute<"a">({.n = {0, 0, 1e300}}).n() - Vec3d::UnitZ()).norm() == 0);
+  CHECK((Revolute<"a">({.n = {1e-200, 0, 0}}).n() - Vec3d::UnitX()).norm() == 0);
+  CHECK((Prismatic<"p">({.n = {3e-300, 4e-300, 0}}).n() - Vec3d(0.6, 0.8, 0)).norm() < 1e-16);
+  CHECK((Revolute<"a">({.n = {1e308, 1e308, 1e308}}).n() - Vec3d::Ones().normalized()).norm() < 1e-16);
+  CHECK_THROWS_WITH(Revolute<"elbow">({.n = {0, 0, 0}}), Contains("Revolute \"elbow\"") && Contains("is zero"));
+}
+
+TEST_CASE("lengths and masses that overflow the dynamics are refused with their cause") {
+  CHECK_THROWS_WITH(models::robot_arm({.m = 1.0, .d = 1e160}),
+                    Contains("FixedTranslation \"rod\"") && Contains("overflows") && Contains("1e+160"));
+  CHECK_THROWS_WITH(models::robot_arm({.m = 1e300, .d = 1e10}), Contains("overflows"));
+  // Large but representable: accepted, and the arm's closed form holds.
+  const models::robot_arm_params big{.m = 1.0, .d = 1e100, .Jx = 0.01, .Jz = 0.02};
+  const auto arm = models::robot_arm(big);
+  std::array<double, 2> x{0.3, 0.0}, dx;
+  arm(x, dx, 0.0);
+  CHECK(dx[1] == Approx(models::robot_arm_theta_dd(big, 0.0, 0.3 + 1.5707963267948966)).epsilon(1e-12));
+}
+
+TEST_CASE("a state of the wrong size is refused with both sizes, directly and through Odeint") {
+  const auto arm = models::robot_arm();
+  std::vector<double> x(1, 0.1), dx(1);
+  CHECK_THROWS_WITH(arm(x, dx, 0.0), Contains("size 1") && Contains("2 entries"));
+  CHECK_THROWS_WITH(odeint::integrate_adaptive(odeint::make_controlled(1e-8, 1e-8, odeint::runge_kutta_dopri5<std::vector<double>>()),
+                                               arm, x, 0.0, 1.0, 1e-3),
+                    Contains("size 1"));
+  CHECK_THROWS_WITH(recover(arm, 0.0, std::vector<double>(3, 0.0)), Contains("size 3"));
+  CHECK_THROWS_WITH(jacobian(arm, 0.0, Eigen::VectorXd::Zero(5)), Contains("size 5"));
+  // The right size works with a std::vector, Odeint's most common state.
+  std::vector<double> y{0.1, 0.0};
+  odeint::integrate_adaptive(odeint::make_controlled(1e-8, 1e-8, odeint::runge_kutta_dopri5<std::vector<double>>()),
+                             arm, y, 0.0, 0.1, 1e-3);
+  CHECK(y.size() == 2);
 }

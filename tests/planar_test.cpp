@@ -72,6 +72,19 @@ TEST_CASE("planar arithmetic ignores exactly what cannot change q̈ in a planar 
   }
 }
 
+TEST_CASE("planar arithmetic ignores exactly what cannot change q̈ in a branched planar tree") {
+  // Random planar trees (models/tree.hpp): branches, prismatic joints along x
+  // and y, joints either way round, every force element, offsets and forces
+  // out of the plane.
+  std::mt19937 rng(15);
+  constexpr auto a = models::random_tree_shape(21, 7, true);
+  constexpr auto b = models::random_tree_shape(22, 6, true);
+  for (int k = 0; k < 20; ++k) {
+    CHECK(disagreement(models::tree<a>(test::tree_params<a.n>(rng)), rng) < round_off);
+    CHECK(disagreement(models::tree<b>(test::tree_params<b.n>(rng)), rng) < round_off);
+  }
+}
+
 TEST_CASE("planar arithmetic on mixed, reversed and offset joints") {
   std::mt19937 rng(13);
   for (int k = 0; k < 50; ++k) {

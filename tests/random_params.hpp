@@ -4,6 +4,7 @@
 
 #include <flange/models/chain.hpp>
 #include <flange/models/paper.hpp>
+#include <flange/models/tree.hpp>
 
 namespace flange::test {
 
@@ -37,6 +38,37 @@ models::chain_params<N> chain_params(std::mt19937& rng) {
     p.m[i] = uniform(rng, 0.2, 2);
     p.J[i] = random_inertia(rng);
   }
+  return p;
+}
+
+inline Vec3d random_vector(std::mt19937& rng, double a, double b) {
+  return Vec3d(uniform(rng, a, b), uniform(rng, a, b), uniform(rng, a, b));
+}
+
+/// Random numbers for a tree of N joints: offsets of 0.2–1 m in any direction
+/// (out of the plane too, for planar shapes), masses 0.2–2 kg, physical
+/// inertias, laws, inputs and loads of order one.
+template <int N>
+models::tree_params<N> tree_params(std::mt19937& rng) {
+  models::tree_params<N> p;
+  for (int i = 0; i < N; ++i) {
+    p.offset[i] = random_vector(rng, -1, 1).normalized() * uniform(rng, 0.2, 1);
+    p.axis[i] = random_vector(rng, -1, 1).normalized();
+    p.m[i] = uniform(rng, 0.2, 2);
+    p.J[i] = random_inertia(rng);
+    p.r_cm[i] = random_vector(rng, -0.2, 0.2);
+    p.c[i] = uniform(rng, 1, 20);
+    p.d[i] = uniform(rng, 0.1, 1);
+    p.q0[i] = uniform(rng, -0.5, 0.5);
+    p.f_c[i] = uniform(rng, 0.1, 1);
+    p.f[i] = uniform(rng, -2, 2);
+    p.torque[i] = random_vector(rng, -1, 1);
+    p.line_c[i] = uniform(rng, 1, 20);
+    p.line_s0[i] = uniform(rng, 0.1, 0.5);
+    p.line_d[i] = uniform(rng, 0.1, 1);
+    p.load[i] = random_vector(rng, -2, 2);
+  }
+  p.g = Vec3d(uniform(rng, -1, 1), -9.81, uniform(rng, -1, 1));
   return p;
 }
 

@@ -1,16 +1,16 @@
 #!/usr/bin/env bash
 # Installs, with apt-get, the Debian 12 packages flange needs that are missing.
 # Run as root (or with sudo). Nothing is installed when everything is there.
-#   tools/install-deps.sh            compiler, CMake, Eigen, Boost, Catch2, Google Benchmark
+#   tools/install-deps.sh            compiler, CMake, Eigen, Boost, Catch2, Google Benchmark,
+#                                    valgrind (the memcheck test)
 #   tools/install-deps.sh --plots    also gnuplot, for docs/*.png
 #   tools/install-deps.sh --peers    also MuJoCo and Simbody, the work-precision study's peers
-# (--plots and --peers may be given together; valgrind comes with --plots, for
-# the instruction counts in docs/effects.md.)
+# (--plots and --peers may be given together.)
 set -euo pipefail
-packages=(g++ cmake make libeigen3-dev libboost-dev catch2 libbenchmark-dev)
+packages=(g++ cmake make libeigen3-dev libboost-dev catch2 libbenchmark-dev valgrind)
 for arg in "$@"; do
   case "$arg" in
-    --plots) packages+=(gnuplot-nox valgrind) ;;
+    --plots) packages+=(gnuplot-nox) ;;
     --peers) packages+=(libmujoco-dev libsimbody-dev) ;;
     *) echo "install-deps: unknown option $arg (use --plots, --peers)" >&2; exit 2 ;;
   esac

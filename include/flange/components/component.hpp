@@ -108,14 +108,17 @@ void require_finite(std::string_view component, std::string_view kind, std::stri
 }
 
 /// A unit axis from a user vector: finite and non-zero, then normalised (as
-/// Modelica normalises a joint axis).
+/// Modelica normalises a joint axis). The vector is first divided by its
+/// largest component, so that no length overflows or underflows: any finite
+/// direction from 1e-300 to 1e300 long is accepted.
 inline Vec3d unit_axis(std::string_view component, std::string_view kind, const Vec3d& n) {
   require_finite(component, kind, "n (axis)", n);
-  const double len = n.norm();
-  if (!(len > 1e-12))
+  const double big = n.cwiseAbs().maxCoeff();
+  if (!(big > 0))
     throw parameter_error(concat(kind, " \"", component, "\": axis n = [", n.transpose(),
-                                 "] has length ", len, "; give a non-zero direction"));
-  return n / len;
+                                 "] is zero; give a non-zero direction"));
+  const Vec3d u = n / big;
+  return u / u.norm();
 }
 
 /// A physical inertia tensor: finite, symmetric, positive semi-definite, and

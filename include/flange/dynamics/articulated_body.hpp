@@ -10,6 +10,7 @@
 #include <array>
 
 #include "flange/dynamics/model.hpp"
+#include "flange/dynamics/ldlt.hpp"
 #include "flange/dynamics/tree_walk.hpp"
 
 namespace flange {
@@ -91,10 +92,16 @@ void accelerations_articulated_body(const S& scene, const T& t, const T* q, cons
     U[L] = IA[L] * Sx[L];
     D[L] = Sx[L].dot(U[L]);
     u[L] = tau[LI::q] - Sx[L].dot(pA[L]);
-    if (!(D[L] > T(0)))
+    // The relative pivot test of solve_spd (newton_euler.hpp), against the
+    // trace of the articulated inertia's block the joint moves in.
+    using XF = typename LI::template transform<T>;
+    const T scale = XF::rotates ? T(IA[L].template topLeftCorner<3, 3>().trace())
+                                : T(IA[L].template bottomRightCorner<3, 3>().trace());
+    if (!(D[L] > T(pivot_tolerance<N, T>()) * scale))
       throw simulation_error(concat("flange: singular articulated inertia at joint \"",
                                     S::table.names[LI::joint], "\" at t = ", static_cast<double>(t), ", ",
-                                    describe_state(q, qd, N)),
+                                    describe_state(q, qd, N), ": pivot ", static_cast<double>(D[L]), " against ",
+                                    static_cast<double>(scale)),
                              static_cast<double>(t));
     if constexpr (LI::parent != 0) {
       const Mat6<T> Ia = IA[L] - U[L] * U[L].transpose() / D[L];

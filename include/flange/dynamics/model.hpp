@@ -3,7 +3,10 @@
 // inertia (all the bodies that move with it, FixedTranslations folded in).
 // These are constants of the scene, so the derivative never recomputes them.
 #pragma once
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <string>
 
 #include "flange/components/component.hpp"
 #include "flange/math/rotation.hpp"
@@ -60,6 +63,17 @@ void visit_component(const S& scene, int c, F&& f) {
   });
 }
 
+/// The name and type name of component c, for a message.
+template <class S>
+std::string describe_component(const S& scene, int c) {
+  std::string r;
+  visit_component(scene, c, [&](const auto& comp) {
+    using C = std::remove_cvref_t<decltype(comp)>;
+    r = concat(C::type_name, " \"", C::name.view(), "\"");
+  });
+  return r;
+}
+
 template <class S>
 auto build_model(const S& scene) {
   constexpr auto& tree = S::tree;
@@ -67,6 +81,17 @@ auto build_model(const S& scene) {
   dynamics_model<tree.n_links, topo.n_sets == 0 ? 1 : topo.n_sets> model{};
   model.set_offset.fill(Vec3d::Zero());  // Eigen leaves its vectors uninitialised
   if constexpr (topo.ok()) {
+    // The whole mass, the yardstick for lengths: m·|p|² must stay finite.
+    double total_mass = 0;
+    for_each_component(scene, [&](auto i, const auto& c) {
+      if constexpr (std::remove_cvref_t<decltype(c)>::kind == role::body) {
+        total_mass += c.m();
+        if (!std::isfinite(total_mass))
+          throw parameter_error(concat(describe_component(scene, decltype(i)::value), ": mass m = ", c.m(),
+                                       " makes the scene's total mass overflow"));
+      }
+    });
+    const double mass_scale = std::max(1.0, total_mass);
     // Sets in breadth-first order: a set's parent is placed before it.
     for (int i = 0; i < tree.n_tree_sets; ++i) {
       const int s = tree.set_order[i];
@@ -75,6 +100,11 @@ auto build_model(const S& scene) {
         if constexpr (std::remove_cvref_t<decltype(e)>::kind == role::rigid)
           model.set_offset[s] = model.set_offset[tree.set_parent[s]] + tree.set_edge_dir[s] * e.d();
       });
+      const Vec3d& p = model.set_offset[s];
+      if (!std::isfinite(mass_scale * p.squaredNorm()))
+        throw parameter_error(concat(describe_component(scene, tree.set_edge[s]), ": it places a frame at [",
+                                     p.transpose(), "] m from its link's origin, where mass times length squared (",
+                                     mass_scale, " kg · |p|²) overflows the dynamics; rescale the scene's units"));
     }
     for_each_component(scene, [&](auto i, const auto& c) {
       using C = std::remove_cvref_t<decltype(c)>;
@@ -85,7 +115,13 @@ auto build_model(const S& scene) {
         b.m = c.m();
         b.h = c.m() * c.r_cm();
         b.I = c.inertia_about_frame();
-        model.link[tree.set_link[s]].add_shifted(b, model.set_offset[s]);
+        auto& link = model.link[tree.set_link[s]];
+        link.add_shifted(b, model.set_offset[s]);
+        if (!(std::isfinite(link.m) && link.h.allFinite() && link.I.allFinite()))
+          throw parameter_error(concat(C::type_name, " \"", C::name.view(), "\": its mass ", c.m(), " kg at [",
+                                       (model.set_offset[s] + c.r_cm()).transpose(),
+                                       "] m from its link's origin gives an inertia that overflows; rescale the "
+                                       "scene's units"));
       }
     });
   }

@@ -10,8 +10,11 @@
 // straight-line block with its joint's axis folded in.
 #pragma once
 #include <array>
+#include <limits>
+#include <string>
 
 
+#include "flange/dynamics/ldlt.hpp"
 #include "flange/dynamics/model.hpp"
 #include "flange/dynamics/tree_walk.hpp"
 #include "flange/math/axial.hpp"
@@ -180,8 +183,12 @@ Mat3<T> rotate_back(const XF& x, const Mat3<T>& I) {
   return B.transpose();
 }
 
+/// The mass matrix M into M, and into scale[q] each joint's inertia before its
+/// projection on the axis (trace of the composite rotational inertia for a
+/// turning joint, the composite mass for a sliding one): what its diagonal
+/// would be without cancellation, the yardstick of the relative pivot test.
 template <class S, class T, class X, class MM>
-void composite_rigid_body(const S& scene, const X& xf, const ne_workspace_t<S, T>& lk, MM& M) {
+void composite_rigid_body(const S& scene, const X& xf, const ne_workspace_t<S, T>& lk, MM& M, T* scale) {
   constexpr int NL = S::tree.n_links;
   constexpr auto F = link_flags<S>::value;
   // Composite inertias are accumulated only for links with children; a leaf's
@@ -191,6 +198,7 @@ void composite_rigid_body(const S& scene, const X& xf, const ne_workspace_t<S, T
     for (int L = 1; L < NL; ++L) c[S::tree.link_parent[L]] = true;
     return c;
   }();
+  zero_branch_pairs<S>(M);
   std::array<rigid_inertia<T>, NL> ic;
   for_links<S>([&](auto l) {
     constexpr int L = decltype(l)::value;
@@ -216,10 +224,12 @@ void composite_rigid_body(const S& scene, const X& xf, const ne_workspace_t<S, T
       n = mul<T>(c.I, s);  // F = Ic·S with S = (σn, 0): (I·σn, σn × h)
       f = cross(s, Vec3<T>(c.h));
       M(LI::q, LI::q) = x.axis_dot(n);
+      scale[LI::q] = T(c.I.trace());
     } else {
       n = cross(Vec3<T>(c.h), s);  // S = (0, σn): (h × σn, m·σn)
       f = T(c.m) * dense(s);
       M(LI::q, LI::q) = T(c.m);
+      scale[LI::q] = T(c.m);
     }
     crba_column<S, L, L>(xf, lk, n, f, M);
     if constexpr (LI::parent != 0) {
@@ -241,55 +251,6 @@ void composite_rigid_body(const S& scene, const X& xf, const ne_workspace_t<S, T
       }
     }
   });
-}
-
-/// Solves M·a = r for a symmetric positive-definite M by an unrolled LDLᵀ
-/// factorisation (no square roots). Returns −1, or the index of the first
-/// pivot that is not positive (the joint that moves nothing with inertia).
-/// Always inlined: for a scene's small systems the call would cost more than
-/// a 2×2 solve (the crane: 243 → 222 instructions per derivative).
-template <int N, class T, class MM>
-[[gnu::always_inline]] inline int solve_spd(MM& M, const T* r, T* a) {
-  // Column by column: with v_k = L(j, k)·d_k for the row j in hand,
-  //   d_j = M(j, j) − Σ_k L(j, k)·v_k,   L(i, j) = (M(i, j) − Σ_k L(i, k)·v_k) / d_j,
-  // so each product L·D is formed once. The loop bounds are constants: the
-  // compiler unrolls them into straight-line code.
-  std::array<T, N> d, inv_d;
-#pragma GCC unroll 16
-  for (int j = 0; j < N; ++j) {
-    std::array<T, N> v;
-    T dj = M(j, j);
-#pragma GCC unroll 16
-    for (int k = 0; k < j; ++k) {
-      v[k] = M(j, k) * d[k];
-      dj -= M(j, k) * v[k];
-    }
-    if (!(dj > T(0))) return j;
-    d[j] = dj;
-    inv_d[j] = T(1) / dj;
-#pragma GCC unroll 16
-    for (int i = j + 1; i < N; ++i) {
-      T x = M(i, j);
-#pragma GCC unroll 16
-      for (int k = 0; k < j; ++k) x -= M(i, k) * v[k];
-      M(i, j) = x * inv_d[j];  // L(i, j), stored below the diagonal
-    }
-  }
-#pragma GCC unroll 16
-  for (int i = 0; i < N; ++i) {
-    T x = r[i];
-#pragma GCC unroll 16
-    for (int k = 0; k < i; ++k) x -= M(i, k) * a[k];
-    a[i] = x;
-  }
-#pragma GCC unroll 16
-  for (int i = N - 1; i >= 0; --i) {
-    T x = a[i] * inv_d[i];
-#pragma GCC unroll 16
-    for (int k = i + 1; k < N; ++k) x -= M(k, i) * a[k];
-    a[i] = x;
-  }
-  return -1;
 }
 
 /// Generalised joint forces from joint inputs (a Prismatic's f).
@@ -314,11 +275,17 @@ constexpr std::string_view joint_name(int i) {
   return "?";
 }
 template <class S, class T>
-[[noreturn, gnu::cold, gnu::noinline]] void singular_mass_matrix(int pivot, const T& t, const T* q, const T* qd,
-                                                                int n) {
+[[noreturn, gnu::cold, gnu::noinline]] void singular_mass_matrix(const pivot_report<T>& p, const T& t, const T* q,
+                                                                const T* qd, int n) {
+  const double d = static_cast<double>(p.d), scale = static_cast<double>(p.scale);
+  const std::string why =
+      scale > 0 ? concat("its pivot ", d, " is ", d / scale, " of the inertia it moves (", scale,
+                         "), at or below the relative tolerance ", pivot_tolerance<S::n_q, T>(),
+                         ": its axis passes through all the mass it moves, or its motion repeats other joints'")
+                : std::string("it moves nothing with mass or inertia");
   throw simulation_error(concat("flange: singular mass matrix at t = ", static_cast<double>(t), ", ",
-                                describe_state(q, qd, n), ": joint \"", joint_name<S>(pivot), "\" (q[", pivot,
-                                "]) moves nothing with mass or inertia"),
+                                describe_state(q, qd, n), ": joint \"", joint_name<S>(p.index), "\" (q[", p.index,
+                                "]): ", why),
                          static_cast<double>(t));
 }
 }  // namespace detail
@@ -336,10 +303,11 @@ void accelerations_newton_euler(const S& scene, const T& t, const T* q, const T*
   detail::newton_euler_bias(scene, qd, xf, n_ext, f_ext, lk, b.data());
   detail::joint_inputs(scene, t, x, tau.data());
   Eigen::Matrix<T, N, N> M;
-  detail::composite_rigid_body<S, T>(scene, xf, lk, M);
+  std::array<T, N> scale;
+  detail::composite_rigid_body<S, T>(scene, xf, lk, M, scale.data());
   std::array<T, N> r;
   for (int i = 0; i < N; ++i) r[i] = tau[i] - b[i];
-  if (const int pivot = detail::solve_spd<N>(M, r.data(), qdd); pivot >= 0) [[unlikely]]
+  if (const auto pivot = detail::solve_spd<N>(M, r.data(), qdd, scale.data()); pivot.index >= 0) [[unlikely]]
     detail::singular_mass_matrix<S>(pivot, t, q, qd, N);
 }
 
@@ -356,7 +324,8 @@ Eigen::Matrix<T, S::n_q, S::n_q> mass_matrix(const S& scene, const T* q) {
   std::array<T, S::n_q> b;
   detail::newton_euler_bias(scene, qd.data(), xf, n_ext, f_ext, lk, b.data());
   Eigen::Matrix<T, S::n_q, S::n_q> M;
-  detail::composite_rigid_body<S, T>(scene, xf, lk, M);
+  std::array<T, S::n_q> scale;
+  detail::composite_rigid_body<S, T>(scene, xf, lk, M, scale.data());
   return M;
 }
 

@@ -298,6 +298,8 @@ void accelerations_planar(const S& scene, const T& t, const T* q, const T* qd, T
 
   // Composite rigid bodies: the mass matrix.
   Eigen::Matrix<T, N, N> M;
+  std::array<T, N> scale;  // what each diagonal entry is before cancellation: I_kk or m
+  zero_branch_pairs<S>(M);
   std::array<planar_inertia<T>, NL> ic;
   for_links<S>([&](auto l) {
     constexpr int L = decltype(l)::value;
@@ -316,11 +318,11 @@ void accelerations_planar(const S& scene, const T& t, const T* q, const T* qd, T
     if constexpr (PJ::revolute) {
       n = PJ::sigma * c.I;
       f = perp(T(PJ::sigma), c.h);
-      M(LI::q, LI::q) = c.I;
+      M(LI::q, LI::q) = scale[LI::q] = c.I;
     } else {
       f = c.m * PJ::axis();
       n = cross2(c.h, PJ::axis());
-      M(LI::q, LI::q) = c.m;
+      M(LI::q, LI::q) = scale[LI::q] = c.m;
     }
     // Carry F up through the ancestors, projecting on each joint's axis.
     auto carry = [&](auto self, auto j, T nn, vec2<T> ff) -> void {
@@ -354,7 +356,7 @@ void accelerations_planar(const S& scene, const T& t, const T* q, const T* qd, T
       }
     }
   });
-  if (const int pivot = solve_spd<N>(M, r.data(), qdd); pivot >= 0) [[unlikely]]
+  if (const auto pivot = solve_spd<N>(M, r.data(), qdd, scale.data()); pivot.index >= 0) [[unlikely]]
     singular_mass_matrix<S>(pivot, t, q, qd, N);
 }
 

@@ -27,9 +27,12 @@ struct dae_solution {
   std::array<T, S::n_q> q{}, qd{}, qdd{};
   std::array<frame_kinematics<T>, S::n_frames> frames;  ///< by global frame index
   std::array<wrench<T>, S::n_frames> cut;               ///< F and M at each frame (frame coordinates)
-  T kinetic{}, potential{};
+  T kinetic{};            ///< kinetic energy of every body
+  T gravity_potential{};  ///< −Σ m·g·r_CM
+  T elastic_potential{};  ///< every spring's: line springs and joint springs
 
-  [[nodiscard]] T energy() const { return kinetic + potential; }
+  [[nodiscard]] T potential() const { return gravity_potential + elastic_potential; }
+  [[nodiscard]] T energy() const { return kinetic + potential(); }
   /// The frame named "component.frame".
   [[nodiscard]] const frame_kinematics<T>& frame(std::string_view name) const { return frames[index(name)]; }
   /// The cut force and torque at the frame named "component.frame".
@@ -49,6 +52,7 @@ template <class S, class T = double, class State>
   constexpr auto& tree = S::tree;
   constexpr auto& topo = S::topology;
   constexpr auto& tab = S::table;
+  S::require_state_size(x);
   dae_solution<S, T> sol;
   sol.t = t;
   for (int i = 0; i < N; ++i) {
@@ -166,7 +170,7 @@ template <class S, class T = double, class State>
     sol.yd.template segment<3>(S::frame_offset(f, 0)) = k.v;
     Eigen::Map<Mat3<T>>(sol.yd.data() + S::frame_offset(f, 1)) = -tilde<T>(k.w) * k.R;
   }
-  sol.kinetic = sol.potential = T(0);
+  sol.kinetic = sol.gravity_potential = sol.elastic_potential = T(0);
   detail::for_each_component(scene, [&](auto i, const auto& c) {
     using C = std::remove_cvref_t<decltype(c)>;
     constexpr int I = decltype(i)::value;
@@ -176,6 +180,7 @@ template <class S, class T = double, class State>
       const int qi = tree.q_index[I];
       sol.y(at(4 * nf)) = sol.q[qi];
       sol.yd(at(4 * nf)) = sol.qd[qi];
+      sol.elastic_potential += c.elastic_energy(sol.q[qi]);
       if constexpr (C::type == joint_type::revolute) {
         const Mat3<T> Rrel = c.relative_rotation(sol.q[qi]);
         Eigen::Map<Mat3<T>>(sol.y.data() + at(4 * nf + 1)) = Rrel;
@@ -191,7 +196,7 @@ template <class S, class T = double, class State>
       }
     }
     if constexpr (requires { c.potential_energy(t, js, &sol.frames[0]); })
-      sol.potential += c.potential_energy(t, js, &sol.frames[tab.frame_base[I]]);
+      sol.elastic_potential += c.potential_energy(t, js, &sol.frames[tab.frame_base[I]]);
     if constexpr (C::kind == role::body) {
       const auto& k = sol.frames[tab.frame_base[I]];
       sol.y.template segment<3>(at(4)) = k.v;
@@ -202,7 +207,7 @@ template <class S, class T = double, class State>
       const Vec3<T> vcm = k.v + k.R.transpose() * k.w.cross(cm);
       const T m = T(c.m());
       sol.kinetic += T(0.5) * m * vcm.squaredNorm() + T(0.5) * k.w.dot(c.J().template cast<T>() * k.w);
-      sol.potential -= m * g.dot(k.r + k.R.transpose() * cm);
+      sol.gravity_potential -= m * g.dot(k.r + k.R.transpose() * cm);
     }
   });
   return sol;

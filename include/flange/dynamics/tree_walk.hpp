@@ -149,6 +149,42 @@ struct link_flags {
   }();
 };
 
+/// The pairs of joints (q indices) on different branches: neither link is an
+/// ancestor of the other, so their mass-matrix entry is zero. The
+/// composite-rigid-body algorithm writes only ancestor pairs; these are the
+/// rest (none for a chain).
+template <class S>
+constexpr auto branch_pairs() {
+  constexpr auto& tree = S::tree;
+  constexpr int NL = tree.n_links;
+  constexpr int count = [] {
+    int n = 0;
+    for (int a = 1; a < NL; ++a)
+      for (int b = a + 1; b < NL; ++b) {
+        bool related = false;
+        for (int x = b; x > 0; x = tree.link_parent[x]) related = related || x == a;
+        n += !related;
+      }
+    return n;
+  }();
+  std::array<std::pair<int, int>, count> pairs{};
+  int k = 0;
+  for (int a = 1; a < NL; ++a)
+    for (int b = a + 1; b < NL; ++b) {
+      bool related = false;
+      for (int x = b; x > 0; x = tree.link_parent[x]) related = related || x == a;
+      if (!related) pairs[k++] = {tree.q_index[tree.link_joint[a]], tree.q_index[tree.link_joint[b]]};
+    }
+  return pairs;
+}
+
+/// Writes the mass matrix's zeros between branches (see branch_pairs).
+template <class S, class MM>
+void zero_branch_pairs(MM& M) {
+  constexpr auto pairs = branch_pairs<S>();
+  for (const auto& [i, j] : pairs) M(i, j) = M(j, i) = 0;
+}
+
 /// acc += v, or acc = v when nothing has been summed yet: adding to a zero
 /// the compiler cannot see (IEEE: 0 + −0 = +0) costs as much as any term.
 template <bool Has, class V>

@@ -76,6 +76,18 @@ T axis_law_force(const axis_law_values& v, const T& q, const T& qd) {
   }
 }
 
+/// The law's potential energy: ½·c·(q − q₀)² for a spring-damper, else 0.
+template <class Law, class T>
+T axis_law_potential(const axis_law_values& v, const T& q) {
+  if constexpr (std::is_same_v<Law, axis_law::spring_damper>) {
+    const T stretch = q - T(v.q0);
+    return T(0.5 * v.c) * stretch * stretch;
+  } else {
+    (void)v, (void)q;
+    return T(0);
+  }
+}
+
 /// −τ as an expression of the joint variable q, for the axis equation.
 template <class Law, class Q>
 auto axis_law_resistance(const axis_law_values& v, Q q, const char* q0_name) {

@@ -79,6 +79,12 @@ class Prismatic {
   }
 
   [[nodiscard]] const Vec3d& n() const { return n_; }
+
+  /// The axis law's potential energy at q (a spring-damper's ½·c·(q − q₀)², else 0).
+  template <class T>
+  [[nodiscard]] T elastic_energy(const T& q) const {
+    return detail::axis_law_potential<Law>(law_, q);
+  }
   [[nodiscard]] const Force& f() const { return f_; }
 
   /// The generalised force on s: the axial force input at (t, x), plus the

@@ -101,6 +101,12 @@ class Revolute {
 
   [[nodiscard]] const Vec3d& n() const { return n_; }
 
+  /// The axis law's potential energy at q (a spring-damper's ½·c·(q − q₀)², else 0).
+  template <class T>
+  [[nodiscard]] T elastic_energy(const T& q) const {
+    return detail::axis_law_potential<Law>(law_, q);
+  }
+
   static constexpr auto phi = internal_<2, 0, expr::var_kind::scalar>;
   static constexpr auto R_rel = internal_<2, 1, expr::var_kind::rot>;
 

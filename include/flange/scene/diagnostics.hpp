@@ -17,6 +17,8 @@ inline constexpr bool always_false = false;
 template <int N> struct equations_declared {};
 template <int N> struct equations_needed {};
 template <int N> struct unknowns {};
+template <int N> struct state_size_given {};
+template <int N> struct state_size_needed {};
 
 namespace diagnostic {
 
@@ -96,6 +98,13 @@ struct world_load_on_world {
   static_assert(always_false<Component>,
                 "flange: this WorldForce or WorldTorque is connected to the World's own frame, so it acts on nothing "
                 "that moves; connect its frame_b to a frame of the mechanism");
+};
+
+template <class Sizes>
+struct wrong_state_size {
+  static_assert(always_false<Sizes>,
+                "flange: this state's size, fixed by its type, differs from the scene's n_state = 2·n_q (the sizes "
+                "are the template arguments); declare it as Scene::state_type or eigen_state<Scene>");
 };
 
 }  // namespace diagnostic

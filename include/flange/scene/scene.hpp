@@ -75,6 +75,15 @@ constexpr bool locally_balanced() {
   // the flow variables of its connectors (those come from the connections).
   return equations_of<C>() == internal_unknowns<C>() + 12 * int(C::frames.size()) - 6 * int(C::frames.size());
 }
+/// The size of a state type when its type fixes it (std::array, fixed-size
+/// Eigen vectors), else −1 (std::vector, dynamic Eigen vectors).
+template <class State>
+constexpr int static_size() {
+  if constexpr (requires { std::tuple_size<State>::value; }) return int(std::tuple_size<State>::value);
+  else if constexpr (requires { State::SizeAtCompileTime; }) return State::SizeAtCompileTime < 0 ? -1 : int(State::SizeAtCompileTime);
+  else return -1;
+}
+
 template <class C>
 constexpr int needed_equations() {
   return internal_unknowns<C>() + 6 * int(C::frames.size());
@@ -262,6 +271,21 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
   static constexpr int n_state = 2 * n_q;
   using state_type = std::array<double, n_state>;
 
+  /// A state of the wrong size is a compile-time error when its type fixes
+  /// the size, and an exception naming both sizes when it does not
+  /// (std::vector, Odeint's most common state): never an out-of-bounds read.
+  template <class State>
+  static void require_state_size(const State& x) {
+    constexpr int n = detail::static_size<State>();
+    static_assert(detail::report<(n >= 0 && n != n_state) ? 0 : -1, diagnostic::wrong_state_size,
+                                 detail::type_list<state_size_given<n>, state_size_needed<n_state>>>());
+    if constexpr (n < 0) {
+      if (static_cast<std::size_t>(x.size()) != std::size_t(n_state)) [[unlikely]]
+        throw error(detail::concat("flange: a state of size ", x.size(), " was given, but the scene's state x = (q, q̇) has ",
+                                   n_state, " entries (", n_q, " joint coordinates and their rates)"));
+    }
+  }
+
   /// ẋ = f(x, t): the Boost.Odeint system signature; q̈ by the algorithm the
   /// scene's type calls for (dynamics/forward_dynamics.hpp). Works for any container
   /// with data() (std::array, Eigen fixed-size vectors) and scalar type.
@@ -270,6 +294,8 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
     static_assert(detail::report<(topology.ok() ? tree.loop : -1), diagnostic::kinematic_loop, Cs...>());
     static_assert(detail::report<(topology.ok() && tree.loop < 0 ? tree.floating : -1),
                                  diagnostic::not_tied_through_joints, Cs...>());
+    require_state_size(x);
+    require_state_size(dxdt);
     using V = std::remove_cvref_t<decltype(x[0])>;
     const V* xs = x.data();
     V* d = dxdt.data();

@@ -24,6 +24,7 @@ using jacobian_matrix = Eigen::Matrix<double, S::n_state, S::n_state>;
 /// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given.
 template <class S, class State>
 jacobian_matrix<S> jacobian(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+  S::require_state_size(x);
   constexpr int n = S::n_state;
   using D = dual<double, n + 1>;  // directions: the n states, then t
   std::array<D, n> xd, fd;
@@ -44,6 +45,7 @@ jacobian_matrix<S> jacobian(const S& scene, double t, const State& x, Eigen::Mat
 template <class S, class State>
 jacobian_matrix<S> jacobian_finite_difference(const S& scene, double t, const State& x,
                                               Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+  S::require_state_size(x);
   constexpr int n = S::n_state;
   const double cbrt_eps = std::cbrt(std::numeric_limits<double>::epsilon());
   jacobian_matrix<S> J;

@@ -46,6 +46,7 @@ template <class Method = jacobian_method::exact, class S, class State, class Obs
 std::size_t integrate_rosenbrock4(const S& scene, State& x, double t0, double t1, double dt, double abs_tol,
                                   double rel_tol, Observer observer = nullptr, double observe_dt = 0,
                                   stiff_stats* stats = nullptr) {
+  S::require_state_size(x);
   constexpr int n = S::n_state;  // the augmented state is (x, τ): n + 1
   struct context {
     const S* scene;
