@@ -100,6 +100,36 @@ void chain_derivative(benchmark::State& st) {
   }
 }
 
+/// The derivative of a scene at a state x (NE + mass matrix, the default, or ABA).
+template <bool ABA, class Scene>
+void scene_derivative(benchmark::State& st, const Scene& sc, typename Scene::state_type x) {
+  typename Scene::state_type dx;
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(x);
+    if constexpr (ABA) {
+      sc(x, dx, 0.0);  // q̇ as the default computes it, then v̇ by articulated bodies
+      accelerations_articulated_body(sc, 0.0, x.data(), x.data() + Scene::n_q, dx.data() + Scene::n_q);
+    } else {
+      sc(x, dx, 0.0);
+    }
+    benchmark::DoNotOptimize(dx);
+  }
+}
+
+/// A free body (FreeMotion, gravity) and a floating-base robot (FreeMotion
+/// trunk, four legs of three revolute joints).
+const auto free_body = scene(World<"world">{}, FreeMotion<"fly">{},
+                             Body<"body", cm::offset>({.m = 2.0, .J = Vec3d(0.1, 0.2, 0.3).asDiagonal(), .r_cm = {0.1, 0, 0}}),
+                             connect<"world.frame_b", "fly.frame_a">, connect<"fly.frame_b", "body.frame_a">);
+const auto legged = models::legged<4, 3>();
+template <class S>
+typename S::state_type moving_state(const S& s) {
+  auto x = neutral_state(s);
+  for (int i = 0; i < S::n_state; ++i) x[i] += 0.1 * std::sin(1.3 * i + 0.4);
+  normalize(s, x);
+  return x;
+}
+
 using A2 = std::array<double, 2>;
 using A4 = std::array<double, 4>;
 using E2 = Eigen::Matrix<double, 2, 1>;
@@ -150,6 +180,10 @@ void register_all() {
   reg("gantry_crane/jacobian/dual", [](benchmark::State& s) { jacobian_eval<true>(s, crane, crane_x); });
   reg("gantry_crane/jacobian/finite_difference",
       [](benchmark::State& s) { jacobian_eval<false>(s, crane, crane_x); });
+  reg("free_body/derivative/newton_euler", [](benchmark::State& s) { scene_derivative<false>(s, free_body, moving_state(free_body)); });
+  reg("free_body/derivative/articulated_body", [](benchmark::State& s) { scene_derivative<true>(s, free_body, moving_state(free_body)); });
+  reg("legged/derivative/newton_euler", [](benchmark::State& s) { scene_derivative<false>(s, legged, moving_state(legged)); });
+  reg("legged/derivative/articulated_body", [](benchmark::State& s) { scene_derivative<true>(s, legged, moving_state(legged)); });
   reg("chain2_planar/derivative/newton_euler", chain_derivative<2, models::planar_axes, false>);
   reg("chain2_planar/derivative/articulated_body", chain_derivative<2, models::planar_axes, true>);
   reg("chain4_spatial/derivative/newton_euler", chain_derivative<4, models::runtime_axes, false>);
@@ -189,7 +223,7 @@ int main(int argc, char** argv) {
   for (const char* scene : {"robot_arm", "gantry_crane"})
     for (const char* what : {"derivative", "rk4_step_array", "rk4_step_eigen"})
       ratio("ratio", scene, what, "generated", "handwritten");
-  for (const char* scene : {"chain2_planar", "chain4_spatial", "chain8_spatial"})
+  for (const char* scene : {"chain2_planar", "chain4_spatial", "chain8_spatial", "free_body", "legged"})
     ratio("algorithm", scene, "derivative", "newton_euler", "articulated_body");
   ratio("overhead", "robot_arm", "rk4_step_array", "checked", "generated");
   for (const char* scene : {"robot_arm", "gantry_crane"})

@@ -2,6 +2,8 @@
 #   build/examples/robot_arm --csv docs/robot_arm.csv
 #   build/examples/gantry_crane --csv docs/gantry_crane.csv
 #   build/examples/buffered_crane --csv docs/buffered_crane.csv
+#   build/examples/spinning_top --csv docs/spinning_top.csv
+#   build/examples/tumbling_body --csv docs/tumbling_body.csv
 #   gnuplot docs/plot_examples.gp        (from the repository root)
 set datafile separator ","
 set terminal pngcairo size 900,640 font "DejaVu Sans,10" noenhanced
@@ -45,4 +47,30 @@ plot "docs/buffered_crane.csv" using 1:($3*180/pi) with lines lw 2 title "load a
 set ylabel "force [N]"
 set xlabel "t [s]"
 plot "docs/buffered_crane.csv" using 1:7 with lines lw 2 title "buffer tension f"
+unset multiplot
+
+set output "docs/spinning_top.png"
+unset xlabel
+set multiplot layout 3,1 title "flange spinning top: released tilted, spinning at 120 rad/s (Spherical joint)"
+set ylabel "tilt [deg]"
+plot "docs/spinning_top.csv" using 1:($2*180/pi) with lines lw 2 title "tilt of the symmetry axis from the vertical (nutation)"
+set ylabel "azimuth [deg]"
+plot "docs/spinning_top.csv" using 1:($3*180/pi) with lines lw 2 title "azimuth of the axis (precession)"
+set ylabel "change since t = 0"
+set xlabel "t [s]"
+plot "docs/spinning_top.csv" using 1:($8*1e12) with lines lw 2 title "energy [pJ]", \
+     "" using 1:($9*1e14) with lines lw 1 title "angular momentum about the vertical [1e-14 kg m²/s]"
+unset multiplot
+
+set output "docs/tumbling_body.png"
+unset xlabel
+set multiplot layout 2,1 title "flange tumbling body: spun about its intermediate axis, it flips (FreeMotion)"
+set ylabel "ω, body axes [rad/s]"
+plot "docs/tumbling_body.csv" using 1:2 with lines lw 1 title "ω1 (smallest inertia)", \
+     "" using 1:3 with lines lw 2 title "ω2 (intermediate)", \
+     "" using 1:4 with lines lw 1 title "ω3 (largest)"
+set ylabel "relative change × 1e12"
+set xlabel "t [s]"
+plot "docs/tumbling_body.csv" using 1:($7*1e12) with lines lw 2 title "kinetic energy", \
+     "" using 1:($8*1e12) with lines lw 1 title "angular momentum in the world, |L − L(0)| / |L(0)|"
 unset multiplot

@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
         worst_residual = std::max(worst_residual, scaled_residual(crane, sol));
         max_tension = std::max(max_tension, std::abs(tension));
         max_swing = std::max(max_swing, std::abs(theta));
-        out << sol.t << ',' << sol.q[0] << ',' << theta << ',' << sol.qd[0] << ',' << sol.qd[1] << ',' << len << ','
+        out << sol.t << ',' << sol.q[0] << ',' << theta << ',' << sol.v[0] << ',' << sol.v[1] << ',' << len << ','
             << tension << ',' << sol.energy() << '\n';
       }));
   std::cout << std::fixed << std::setprecision(4) << "flange buffered crane: " << Crane::n_equations

@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
     max_sway = std::max(max_sway, std::abs(theta));
     if (s.t == 2.0) e_coast = s.energy();
     e_end = s.energy();
-    out << s.t << ',' << s.q[0] << ',' << theta << ',' << s.qd[0] << ',' << s.qd[1] << ',' << push(s.t) << ','
+    out << s.t << ',' << s.q[0] << ',' << theta << ',' << s.v[0] << ',' << s.v[1] << ',' << push(s.t) << ','
         << s.energy() << ',' << s.cut_at("load.frame_a").f.norm() << '\n';
   });
   // The force jumps at t = 1 and 2: integrate each smooth piece on its own.

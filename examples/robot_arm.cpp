@@ -58,11 +58,11 @@ int main(int argc, char** argv) {
   std::vector<double> power;  // the motor's power M_z·φ̇ at every sample
   double max_bearing = 0;
   auto observe = record(arm, [&](const auto& s) {
-    const double Mz = motor(s.t, {s.q.data(), s.qd.data(), 1}).z();
-    power.push_back(Mz * s.qd[0]);
+    const double Mz = motor(s.t, {s.q.data(), s.v.data(), 1}).z();
+    power.push_back(Mz * s.v[0]);
     const double bearing = s.cut_at("joint.frame_b").f.norm();
     max_bearing = std::max(max_bearing, bearing);
-    out << s.t << ',' << s.q[0] + std::numbers::pi / 2 << ',' << s.qd[0] << ',' << Mz << ',' << s.energy() << ','
+    out << s.t << ',' << s.q[0] + std::numbers::pi / 2 << ',' << s.v[0] << ',' << Mz << ',' << s.energy() << ','
         << s.cut_at("rod.frame_a").n.z() << ',' << bearing << '\n';
   });
   auto stepper = odeint::make_dense_output(1e-10, 1e-10, odeint::runge_kutta_dopri5<Arm::state_type>());

@@ -44,7 +44,7 @@ TEST_CASE("a joint spring-damper is the exact damped oscillator") {
                             const double exact = phi0 + std::exp(-zeta * w * t) * (A * std::cos(wd * t) + B * std::sin(wd * t));
                             worst = std::max(worst, std::abs(sol.q[0] - exact));
                             worst_residual = std::max(worst_residual, scaled_residual(s, sol));
-                            along.sample(s, t, X{sol.q[0], sol.qd[0]});
+                            along.sample(s, t, X{sol.q[0], sol.v[0]});
                           }));
   CHECK(along.orthogonality <= 1e-12);
   CHECK(along.algorithms <= 1e-10);

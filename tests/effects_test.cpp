@@ -177,11 +177,11 @@ TEST_CASE("bodies at their links' origins: diagonal and point inertias known fro
   const auto typed = models::gimbal<inertia_kind::diagonal, inertia_kind::point>();
   // The same J, and J = 0, as values.
   const auto general = models::gimbal<inertia_kind::full, inertia_kind::full>(Vec3d::Zero());
-  using F = detail::link_flags<std::remove_cvref_t<decltype(typed)>>;
+  using F = detail::inertia_kinds<std::remove_cvref_t<decltype(typed)>>;
   STATIC_REQUIRE(F::value.I_kind[1] == 1);  // diagonal
   STATIC_REQUIRE(F::value.I_kind[2] == 0);  // a point mass at the origin: no rotational inertia
   STATIC_REQUIRE(F::value.h_zero[1] && F::value.h_zero[2] && F::value.h_zero[3]);
-  STATIC_REQUIRE(detail::link_flags<std::remove_cvref_t<decltype(general)>>::value.I_kind[1] == 2);
+  STATIC_REQUIRE(detail::inertia_kinds<std::remove_cvref_t<decltype(general)>>::value.I_kind[1] == 2);
   std::mt19937 rng(8);
   CHECK(max_difference(typed, general, rng) < 1e-14);
   // And against the articulated-body algorithm, which knows none of this.

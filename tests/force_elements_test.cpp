@@ -77,7 +77,7 @@ TEST_CASE("a pendulum on a spring conserves kinetic, gravity and spring energy, 
   odeint::integrate_const(odeint::make_dense_output(1e-12, 1e-12, odeint::runge_kutta_dopri5<X>()), s, x, 0.0, 5.0,
                           0.1, record(s, [&](const auto& sol) {
                             drift = std::max(drift, std::abs(sol.energy() - E0));
-                            along.sample(s, sol.t, X{sol.q[0], sol.qd[0]});
+                            along.sample(s, sol.t, X{sol.q[0], sol.v[0]});
                           }));
   INFO("energy " << E0 << ", drift " << drift);
   CHECK(drift < 1e-9 * std::abs(E0));  // tolerance 1e-12 per step, ~10³ steps

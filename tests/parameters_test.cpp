@@ -63,7 +63,7 @@ TEST_CASE("a massless link in the middle of a chain names its joint") {
   p.m[0] = 1.0;
   const auto chain = models::chain<2, models::planar_axes>(p);
   std::array<double, 4> x{0.1, 0.2, 0.0, 0.0}, dx;
-  CHECK_THROWS_WITH(chain(x, dx, 0.0), Contains("joint \"j1\" (q[1])"));
+  CHECK_THROWS_WITH(chain(x, dx, 0.0), Contains("joint \"j1\" (v[1])"));
 }
 
 TEST_CASE("a branch that moves nothing names its joint") {
@@ -82,7 +82,7 @@ TEST_CASE("a branch that moves nothing names its joint") {
                  connect<"shin.frame_b", "foot_l.frame_a">, connect<"knee_r.frame_b", "foot_r.frame_a">);
   };
   std::array<double, 6> x{0.1, 0.2, 0.3, 0.0, 0.0, 0.0}, dx;
-  CHECK_THROWS_WITH(make(1.0)(x, dx, 0.0), Contains("joint \"knee_r\" (q[2])") && Contains("singular mass matrix"));
+  CHECK_THROWS_WITH(make(1.0)(x, dx, 0.0), Contains("joint \"knee_r\" (v[2])") && Contains("singular mass matrix"));
 }
 
 TEST_CASE("a point mass on a skew joint axis through it is a singular mass matrix, named with its cause") {
@@ -146,4 +146,33 @@ TEST_CASE("a state of the wrong size is refused with both sizes, directly and th
   odeint::integrate_adaptive(odeint::make_controlled(1e-8, 1e-8, odeint::runge_kutta_dopri5<std::vector<double>>()),
                              arm, y, 0.0, 0.1, 1e-3);
   CHECK(y.size() == 2);
+}
+
+TEST_CASE("the 3-D joints refuse bad axes, orientations and quaternions, naming the joint and the value") {
+  CHECK_THROWS_WITH(Universal<"cardan">({.n_a = {1, 0, 0}, .n_b = {2, 0, 0}}),
+                    Contains("Universal \"cardan\"") && Contains("parallel"));
+  CHECK_THROWS_WITH(Universal<"cardan">({.n_a = {0, 0, 0}, .n_b = {0, 1, 0}}),
+                    Contains("Universal \"cardan\"") && Contains("is zero"));
+  CHECK_THROWS_WITH(Planar<"table">({.n = {0, 0, 1}, .n_x = {0, 0, 3}}), Contains("Planar \"table\"") && Contains("parallel"));
+  CHECK_THROWS_WITH(Cylindrical<"piston">({.n = {0, 0, 0}}), Contains("Cylindrical \"piston\"") && Contains("is zero"));
+  Mat3d skewed = Mat3d::Identity();
+  skewed(0, 1) = 0.1;
+  CHECK_THROWS_WITH(FixedRotation<"turn">({.R = orientation::matrix(skewed)}),
+                    Contains("FixedRotation \"turn\"") && Contains("is not a rotation"));
+  CHECK_THROWS_WITH(FixedRotation<"turn">({.R = orientation::matrix(-Mat3d::Identity())}),
+                    Contains("FixedRotation \"turn\"") && Contains("det R = -1"));
+  const auto top = scene(World<"world">{}, Spherical<"ball">{}, Body<"b">({.m = 1.0, .J = Mat3d::Identity()}),
+                         connect<"world.frame_b", "ball.frame_a">, connect<"ball.frame_b", "b.frame_a">);
+  auto x = neutral_state(top);
+  CHECK_THROWS_WITH(set_joint<"ball">(top, x, {.R = orientation::matrix(skewed)}),
+                    Contains("Spherical \"ball\"") && Contains("initial orientation") && Contains("not a rotation"));
+  // A quaternion written by hand with the wrong norm: the checked system names
+  // the joint, the value and the fix.
+  x = {0.5, 0.5, 0.5, 0.9, 0, 0, 0};
+  budget b;
+  decltype(top)::state_type dx;
+  CHECK_THROWS_WITH(checked(top, b)(x, dx, 0.0), Contains("Spherical \"ball\"") && Contains("squared norm 1.56") &&
+                                                   Contains("normalize") && Contains("t = 0"));
+  normalize(top, x);
+  CHECK_NOTHROW(checked(top, b)(x, dx, 0.0));
 }

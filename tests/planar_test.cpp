@@ -1,11 +1,11 @@
-// Planar scenes in planar arithmetic (flange/dynamics/planar.hpp) against the
+// Planar scenes in planar arithmetic (planar_algebra, flange/dynamics/algebra.hpp) against the
 // spatial Newton–Euler algorithm on the same scene: the same q̈ to round-off,
 // with everything a planar algorithm must ignore made non-zero (out-of-plane
 // offsets, products of inertia, centre-of-mass offsets, gravity along the
 // normal, torque components off the normal), joints either way round, and
 // prismatic joints along both in-plane axes.
 #include <catch2/catch.hpp>
-#include <flange/dynamics/planar.hpp>
+#include <flange/dynamics/forward_dynamics.hpp>
 #include <flange/flange.hpp>
 
 #include "random_params.hpp"

@@ -54,6 +54,7 @@ models::tree_params<N> tree_params(std::mt19937& rng) {
   for (int i = 0; i < N; ++i) {
     p.offset[i] = random_vector(rng, -1, 1).normalized() * uniform(rng, 0.2, 1);
     p.axis[i] = random_vector(rng, -1, 1).normalized();
+    p.axis2[i] = random_vector(rng, -1, 1).normalized();
     p.m[i] = uniform(rng, 0.2, 2);
     p.J[i] = random_inertia(rng);
     p.r_cm[i] = random_vector(rng, -0.2, 0.2);

@@ -19,6 +19,7 @@
 #include <flange/dynamics/articulated_body.hpp>
 #include <flange/dynamics/recover.hpp>
 #include <flange/math/dual.hpp>
+#include <flange/simulate/system.hpp>
 
 #include "random_params.hpp"
 
@@ -29,6 +30,17 @@ namespace flange::test {
   volatile double junk[8192];
   for (auto& j : junk) j = std::numeric_limits<double>::quiet_NaN();
   asm volatile("" : : "r"(junk) : "memory");
+}
+
+/// A random state: coordinates in [−1.5, 1.5] (kept valid: quaternions
+/// normalised), rates in [−2, 2].
+template <class S>
+typename S::state_type random_state(const S& s, std::mt19937& rng) {
+  typename S::state_type x;
+  for (int i = 0; i < S::n_q; ++i) x[i] = uniform(rng, -1.5, 1.5);
+  for (int i = S::n_q; i < S::n_state; ++i) x[i] = uniform(rng, -2, 2);
+  normalize(s, x);
+  return x;
 }
 
 struct law_errors {
@@ -70,12 +82,17 @@ std::pair<double, double> power_balance(const S& s, double t, const State& x) {
         scale += std::abs(p);
       }
     } else if constexpr (C::kind == role::joint) {
-      if constexpr (C::has_input) {
-        const int qi = S::tree.q_index[I];
-        const joint_state<double> js{sol.q.data(), sol.qd.data(), S::n_q};
-        const double p = c.generalized_force(t, js, qi) * sol.qd[qi];
-        P += p;
-        scale += std::abs(p);
+      const double* q = sol.q.data() + S::tree.q_offset[I];
+      const double* v = sol.v.data() + S::tree.v_offset[I];
+      const joint_state<double> js{sol.q.data(), sol.v.data(), S::n_q};
+      if constexpr (requires { c.generalized_force(t, js, q, v, static_cast<double*>(nullptr)); }) {
+        std::array<double, C::nv> tau;
+        c.generalized_force(t, js, q, v, tau.data());
+        for (int k = 0; k < C::nv; ++k) {
+          const double p = tau[k] * v[k];
+          P += p;
+          scale += std::abs(p);
+        }
       }
     }
   });
@@ -84,21 +101,19 @@ std::pair<double, double> power_balance(const S& s, double t, const State& x) {
 
 template <class S>
 void check_laws(const S& s, std::mt19937& rng, law_errors& e, int samples = 10) {
-  constexpr int N = S::n_q;
+  constexpr int N = S::n_q, NV = S::n_v;
   using X = typename S::state_type;
   for (int k = 0; k < samples; ++k) {
-    X x, dx;
-    for (int i = 0; i < N; ++i) x[i] = uniform(rng, -1.5, 1.5);
-    for (int i = N; i < 2 * N; ++i) x[i] = uniform(rng, -2, 2);
+    X x = random_state(s, rng), dx;
     const double t = uniform(rng, 0, 1);
     poison_stack();
     s(x, dx, t);
-    std::array<double, N> aba;
+    std::array<double, NV> aba;
     poison_stack();
     accelerations_articulated_body(s, t, x.data(), x.data() + N, aba.data());
     double scale = 1;
-    for (int i = 0; i < N; ++i) scale = std::max(scale, std::abs(dx[N + i]));
-    for (int i = 0; i < N; ++i) e.algorithms = std::max(e.algorithms, std::abs(aba[i] - dx[N + i]) / scale);
+    for (int i = 0; i < NV; ++i) scale = std::max(scale, std::abs(dx[N + i]));
+    for (int i = 0; i < NV; ++i) e.algorithms = std::max(e.algorithms, std::abs(aba[i] - dx[N + i]) / scale);
     poison_stack();
     const auto sol = recover(s, t, x);
     e.residual = std::max(e.residual, scaled_residual(s, sol));

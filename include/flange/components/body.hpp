@@ -24,12 +24,12 @@
 // Body<Name, cm::at_frame, inertia_kind::diagonal> declares J diagonal in
 // frame_a's axes (checked at construction). Where a link's bodies all sit at
 // its origin, the dynamics then know its inertia is diagonal, or zero for
-// point masses, and skip the products that rules out (tree_walk.hpp).
+// point masses, and skip the products that rules out (dynamics/algebra.hpp).
 #pragma once
 #include <boost/hana/tuple.hpp>
 
-#include "flange/components/component.hpp"
-#include "flange/components/frame_kinematics.hpp"
+#include "flange/core/component.hpp"
+#include "flange/core/frame_kinematics.hpp"
 #include "flange/math/rotation.hpp"
 
 namespace flange {

@@ -7,8 +7,8 @@
 #pragma once
 #include <boost/hana/tuple.hpp>
 
-#include "flange/components/component.hpp"
-#include "flange/components/frame_kinematics.hpp"
+#include "flange/core/component.hpp"
+#include "flange/core/joint.hpp"
 
 namespace flange {
 
@@ -38,16 +38,13 @@ class FixedTranslation {
                                    eq(M_<1>, -M_<0> + cross(d, F_<0>)));
   }
 
-  /// The flows at frame_a from those at frame_b, and the reverse: the
-  /// component's own equations solved for the other side.
+  /// A rigid edge of the kinematic tree: frame_b's constant pose in frame_a.
+  /// It does not rotate (rotation_axis −2: none), so frames it joins share
+  /// their orientation and no rotation arithmetic is generated for them.
+  static constexpr int rotation_axis = -2;
   template <class T>
-  [[nodiscard]] wrench<T> flows_a_from_b(const wrench<T>& b, const T&) const {
-    const Vec3<T> Fa = -b.f;
-    return {Fa, d_.cast<T>().cross(Fa) - b.n};
-  }
-  template <class T>
-  [[nodiscard]] wrench<T> flows_b_from_a(const wrench<T>& a, const T&) const {
-    return {-a.f, -a.n + d_.cast<T>().cross(a.f)};
+  [[nodiscard]] pose<T> relative_pose() const {
+    return {Mat3<T>::Identity(), d_.cast<T>()};
   }
 
  private:

@@ -7,7 +7,7 @@
 #pragma once
 #include <boost/hana/tuple.hpp>
 
-#include "flange/components/component.hpp"
+#include "flange/core/component.hpp"
 
 namespace flange {
 

@@ -1,21 +1,147 @@
-// q̈ from (t, q, q̇): the algorithm a scene's type calls for.
+// The joint accelerations v̇ = M(q)⁻¹·(τ(t, q, v) − b(q, v)) at (t, q, v), in
+// the algebra the scene's type calls for (algebra.hpp): planar arithmetic for
+// a planar scene, spatial otherwise. b is the Newton–Euler bias
+// (newton_euler.hpp), M the composite-rigid-body mass matrix
+// (mass_matrix.hpp), τ the joints' own generalized forces (inputs and axis
+// laws), and the solve an unrolled LDLᵀ with a relative pivot test (ldlt.hpp).
 //
-// A planar scene (dynamics/planar.hpp: every revolute axis the same
-// compile-time coordinate axis, every prismatic axis another one) runs planar
-// arithmetic; any other tree runs spatial Newton–Euler plus the mass matrix
-// (dynamics/newton_euler.hpp). Both are exact; they agree to round-off
-// (tests/planar_test.cpp). Call accelerations_newton_euler directly to force
-// the spatial algorithm.
+// accelerations_newton_euler and accelerations_planar force one algebra, for
+// the tests that hold the two against each other.
 #pragma once
+#include "flange/detail/inline.hpp"
+#include <array>
+#include <string>
+
+#include "flange/dynamics/external.hpp"
+#include "flange/dynamics/ldlt.hpp"
+#include "flange/dynamics/mass_matrix.hpp"
 #include "flange/dynamics/newton_euler.hpp"
-#include "flange/dynamics/planar.hpp"
 
 namespace flange {
 
+namespace detail {
+
+/// The joints' own generalized forces (a Prismatic's force input, axis laws).
 template <class S, class T>
-void accelerations(const S& scene, const T& t, const T* q, const T* qd, T* qdd) {
-  if constexpr (detail::planar_axis<S>() >= 0) accelerations_planar(scene, t, q, qd, qdd);
-  else accelerations_newton_euler(scene, t, q, qd, qdd);
+void joint_forces(const S& scene, const T& t, const joint_state<T>& x, T* tau) {
+  for (int i = 0; i < S::n_v; ++i) tau[i] = T(0);
+  for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
+    using LI = link_info<S, decltype(l)::value>;
+    const auto& j = scene.template component<LI::joint>();
+    if constexpr (requires { j.generalized_force(t, x, x.q_, x.qd_, tau); })
+      j.generalized_force(t, x, x.q_ + LI::q, x.qd_ + LI::v, tau + LI::v);
+  });
+}
+
+/// The joint owning rate v[i], and which of its rates it is.
+template <class S>
+constexpr std::pair<std::string_view, int> rate_owner(int i) {
+  for (int c = 0; c < S::n_components; ++c)
+    if (S::tree.v_offset[c] >= 0 && i >= S::tree.v_offset[c] && i < S::tree.v_offset[c] + S::table.nv[c])
+      return {S::table.names[c], i - S::tree.v_offset[c]};
+  return {"?", 0};
+}
+
+template <class S, class T>
+[[noreturn, gnu::cold, gnu::noinline]] void singular_mass_matrix(const pivot_report<T>& p, const T& t, const T* q,
+                                                                const T* v) {
+  const double d = static_cast<double>(p.d), scale = static_cast<double>(p.scale);
+  const auto [joint, k] = rate_owner<S>(p.index);
+  const std::string why =
+      scale > 0 ? concat("its pivot ", d, " is ", d / scale, " of the inertia it moves (", scale,
+                         "), at or below the relative tolerance ", pivot_tolerance<S::n_v, T>(),
+                         ": its axis passes through all the mass it moves, or its motion repeats other joints'")
+                : std::string("it moves nothing with mass or inertia");
+  const std::string which = S::table.nv[S::index_of(joint)] > 1 ? concat(", its rate ", k) : std::string();
+  throw simulation_error(concat("flange: singular mass matrix at t = ", static_cast<double>(t), ", ",
+                                describe_state(q, S::n_q, v, S::n_v), ": joint \"", joint, "\"", which, " (v[",
+                                p.index, "]): ", why),
+                         static_cast<double>(t));
+}
+
+/// The link motions an algebra's passes need at q (a tuple, links.hpp), and
+/// the spatial ones the force elements' pose pass needs: the same tuple in
+/// the spatial algebra, a second one only for a planar scene with line or
+/// world forces.
+template <class A, class S, class T>
+[[gnu::always_inline]] inline auto algebra_motions(const S& scene, const T* q) {
+  return link_motions<A, T, has_motion_forces<S>()>(scene, q);
+}
+template <class A, class S, class T, class M>
+[[gnu::always_inline]] inline decltype(auto) pose_motions(const S& scene, const T*, const M& motions) {
+  if constexpr (A::planar && has_motion_forces<S>()) return spatial_offsets<T>(scene, motions);
+  else return (motions);
+}
+
+/// v̇ = M⁻¹·(τ − b) with the motions at q given. Always inlined into its
+/// caller: a call would pass every link's motion through memory.
+template <class A, class S, class T, class M, class PM>
+[[gnu::always_inline]] inline void solve_accelerations(const S& scene, const T& t, const T* q, const T* v, T* vdot,
+                                                      const M& motions, const PM& pose) {
+  constexpr int N = S::n_v;
+  const joint_state<T> x{q, v, S::n_q};
+  link_loads<S, T> n_ext, f_ext;
+  gather_external<A>(scene, t, x, motions, pose, n_ext, f_ext);
+  std::array<T, N> b, tau, scale;
+  inverse_dynamics<A>(scene, motions, v, no_rates{}, n_ext, f_ext, b.data());
+  joint_forces(scene, t, x, tau.data());
+  Eigen::Matrix<T, N, N> Mm;
+  mass_matrix<A>(scene, motions, Mm, scale.data());
+  std::array<T, N> r;
+  for (int i = 0; i < N; ++i) r[i] = tau[i] - b[i];
+  if (const auto pivot = solve_spd<N>(Mm, r.data(), vdot, scale.data()); pivot.index >= 0) [[unlikely]]
+    singular_mass_matrix<S>(pivot, t, q, v);
+}
+
+}  // namespace detail
+
+/// v̇ at (t, q, v) in algebra A. Throws simulation_error if M is singular.
+template <class A, class S, class T>
+void accelerations_in(const S& scene, const T& t, const T* q, const T* v, T* vdot) {
+  const auto motions = detail::algebra_motions<A>(scene, q);
+  detail::solve_accelerations<A>(scene, t, q, v, vdot, motions, detail::pose_motions<A>(scene, q, motions));
+}
+
+/// v̇ at (t, q, v) by the algorithm the scene's type calls for.
+template <class S, class T>
+void accelerations(const S& scene, const T& t, const T* q, const T* v, T* vdot) {
+  accelerations_in<algebra_t<S>>(scene, t, q, v, vdot);
+}
+/// The same in spatial arithmetic, whatever the scene.
+template <class S, class T>
+void accelerations_newton_euler(const S& scene, const T& t, const T* q, const T* v, T* vdot) {
+  accelerations_in<spatial_algebra>(scene, t, q, v, vdot);
+}
+/// The same in planar arithmetic (for a planar scene only).
+template <class S, class T>
+void accelerations_planar(const S& scene, const T& t, const T* q, const T* v, T* vdot) {
+  static_assert(detail::planar_axis<S>() >= 0, "flange: accelerations_planar needs a planar scene (dynamics/algebra.hpp)");
+  accelerations_in<planar_algebra<detail::planar_axis<S>()>>(scene, t, q, v, vdot);
+}
+
+/// The mass matrix M(q), n_v × n_v (spatial arithmetic).
+template <class S, class T>
+Eigen::Matrix<T, S::n_v, S::n_v> mass_matrix(const S& scene, const T* q) {
+  const auto motions = detail::link_motions<spatial_algebra, T, true>(scene, q);
+  Eigen::Matrix<T, S::n_v, S::n_v> M;
+  std::array<T, S::n_v> scale;
+  detail::mass_matrix<spatial_algebra>(scene, motions, M, scale.data());
+  return M;
+}
+
+/// τ = ID(q, v, v̇): the generalized forces for accelerations vdot (spatial
+/// arithmetic), with gravity and the force elements' loads but without the
+/// joints' own forces.
+template <class S, class T>
+std::array<T, S::n_v> inverse_dynamics(const S& scene, const T& t, const T* q, const T* v, const T* vdot) {
+  using namespace detail;
+  const joint_state<T> x{q, v, S::n_q};
+  std::array<T, S::n_v> tau;
+  const auto motions = link_motions<spatial_algebra, T, true>(scene, q);
+  link_loads<S, T> n_ext, f_ext;
+  gather_external<spatial_algebra>(scene, t, x, motions, motions, n_ext, f_ext);
+  detail::inverse_dynamics<spatial_algebra>(scene, motions, v, vdot, n_ext, f_ext, tau.data());
+  return tau;
 }
 
 }  // namespace flange

@@ -1,14 +1,17 @@
 // What the recursive algorithms precompute at scene construction: every
-// connection set's offset from its link's origin, and every link's rigid-body
-// inertia (all the bodies that move with it, FixedTranslations folded in).
-// These are constants of the scene, so the derivative never recomputes them.
+// connection set's pose relative to its link's origin (rigid edges folded:
+// FixedTranslation's offset, FixedRotation's rotation), and every link's
+// rigid-body inertia (all the bodies that move with it). These are constants
+// of the scene, so the derivative never recomputes them.
 #pragma once
+#include "flange/detail/inline.hpp"
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
 
-#include "flange/components/component.hpp"
+#include "flange/core/component.hpp"
+#include "flange/core/joint.hpp"
 #include "flange/math/rotation.hpp"
 
 namespace flange::detail {
@@ -26,16 +29,8 @@ struct rigid_inertia {
   ///   I += I_o − m·p̃² − p̃·h̃ − h̃·p̃
   /// becomes (m|p|² + 2 p·h)·1 − m·p·p' − h·p' − p·h': outer products, no 3×3 products.
   void add_shifted(const rigid_inertia& o, const Vec3<T>& p) {
-    add_shifted_mass(o, p);
-    add_shifted_rotational(o, p);
-  }
-  /// The mass and first-moment part of add_shifted.
-  void add_shifted_mass(const rigid_inertia& o, const Vec3<T>& p) {
     m += o.m;
     h += o.h + o.m * p;
-  }
-  /// The rotational-inertia part of add_shifted.
-  void add_shifted_rotational(const rigid_inertia& o, const Vec3<T>& p) {
     const Vec3<T> mp = o.m * p;
     I += o.I - (mp + o.h) * p.transpose() - p * o.h.transpose();
     I.diagonal().array() += mp.dot(p) + T(2) * p.dot(o.h);
@@ -44,13 +39,14 @@ struct rigid_inertia {
 
 template <int NL, int NS>
 struct dynamics_model {
-  std::array<Vec3d, NS> set_offset{};
+  std::array<Vec3d, NS> set_offset{};    ///< a set's origin in its link's coordinates
+  std::array<Mat3d, NS> set_rotation{};  ///< rotates link coordinates into the set's
   std::array<rigid_inertia<double>, NL> link{};
 };
 
 template <class S, class F>
 void for_each_component(const S& scene, F&& f) {
-  [&]<int... I>(std::integer_sequence<int, I...>) {
+  [&]<int... I>(std::integer_sequence<int, I...>) FLANGE_INLINE_LAMBDA {
     (f(std::integral_constant<int, I>{}, scene.template component<I>()), ...);
   }(std::make_integer_sequence<int, S::n_components>{});
 }
@@ -58,7 +54,7 @@ void for_each_component(const S& scene, F&& f) {
 /// Calls f(component) for the component with run-time index c.
 template <class S, class F>
 void visit_component(const S& scene, int c, F&& f) {
-  for_each_component(scene, [&](auto i, const auto& comp) {
+  for_each_component(scene, [&](auto i, const auto& comp) FLANGE_INLINE_LAMBDA {
     if (decltype(i)::value == c) f(comp);
   });
 }
@@ -67,12 +63,16 @@ void visit_component(const S& scene, int c, F&& f) {
 template <class S>
 std::string describe_component(const S& scene, int c) {
   std::string r;
-  visit_component(scene, c, [&](const auto& comp) {
+  visit_component(scene, c, [&](const auto& comp) FLANGE_INLINE_LAMBDA {
     using C = std::remove_cvref_t<decltype(comp)>;
     r = concat(C::type_name, " \"", C::name.view(), "\"");
   });
   return r;
 }
+
+/// Whether the scene's tree is one the dynamics can walk (no loop, nothing floating).
+template <class S>
+inline constexpr bool walkable = S::topology.ok() && S::tree.loop < 0 && S::tree.floating < 0;
 
 template <class S>
 auto build_model(const S& scene) {
@@ -80,10 +80,11 @@ auto build_model(const S& scene) {
   constexpr auto& topo = S::topology;
   dynamics_model<tree.n_links, topo.n_sets == 0 ? 1 : topo.n_sets> model{};
   model.set_offset.fill(Vec3d::Zero());  // Eigen leaves its vectors uninitialised
-  if constexpr (topo.ok()) {
+  model.set_rotation.fill(Mat3d::Identity());
+  if constexpr (walkable<S>) {
     // The whole mass, the yardstick for lengths: m·|p|² must stay finite.
     double total_mass = 0;
-    for_each_component(scene, [&](auto i, const auto& c) {
+    for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
       if constexpr (std::remove_cvref_t<decltype(c)>::kind == role::body) {
         total_mass += c.m();
         if (!std::isfinite(total_mass))
@@ -92,13 +93,24 @@ auto build_model(const S& scene) {
       }
     });
     const double mass_scale = std::max(1.0, total_mass);
-    // Sets in breadth-first order: a set's parent is placed before it.
+    // Sets in breadth-first order: a set's parent is placed before it. A rigid
+    // edge gives frame_b's pose in frame_a; walked from frame_b, its inverse.
     for (int i = 0; i < tree.n_tree_sets; ++i) {
       const int s = tree.set_order[i];
-      if (tree.set_parent[s] < 0) continue;
-      visit_component(scene, tree.set_edge[s], [&](const auto& e) {
-        if constexpr (std::remove_cvref_t<decltype(e)>::kind == role::rigid)
-          model.set_offset[s] = model.set_offset[tree.set_parent[s]] + tree.set_edge_dir[s] * e.d();
+      const int ps = tree.set_parent[s];
+      if (ps < 0) continue;
+      visit_component(scene, tree.set_edge[s], [&](const auto& e) FLANGE_INLINE_LAMBDA {
+        if constexpr (std::remove_cvref_t<decltype(e)>::kind == role::rigid) {
+          const pose<double> x = e.template relative_pose<double>();
+          const Mat3d& Rp = model.set_rotation[ps];
+          if (tree.set_edge_dir[s] > 0) {
+            model.set_rotation[s] = x.R * Rp;
+            model.set_offset[s] = model.set_offset[ps] + Rp.transpose() * x.p;
+          } else {
+            model.set_rotation[s] = x.R.transpose() * Rp;
+            model.set_offset[s] = model.set_offset[ps] - Rp.transpose() * (x.R * x.p);
+          }
+        }
       });
       const Vec3d& p = model.set_offset[s];
       if (!std::isfinite(mass_scale * p.squaredNorm()))
@@ -106,20 +118,23 @@ auto build_model(const S& scene) {
                                      p.transpose(), "] m from its link's origin, where mass times length squared (",
                                      mass_scale, " kg · |p|²) overflows the dynamics; rescale the scene's units"));
     }
-    for_each_component(scene, [&](auto i, const auto& c) {
+    for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
       using C = std::remove_cvref_t<decltype(c)>;
       if constexpr (C::kind == role::body) {
         const int s = topo.set_of[S::table.frame_base[decltype(i)::value]];
         if (tree.set_link[s] < 0) return;
+        // The body's mass, first moment and inertia about frame_a, in the
+        // set's coordinates, turned into its link's coordinates.
+        const Mat3d& R = model.set_rotation[s];
         rigid_inertia<double> b;
         b.m = c.m();
-        b.h = c.m() * c.r_cm();
-        b.I = c.inertia_about_frame();
+        b.h = R.transpose() * (c.m() * c.r_cm());
+        b.I = R.transpose() * c.inertia_about_frame() * R;
         auto& link = model.link[tree.set_link[s]];
         link.add_shifted(b, model.set_offset[s]);
         if (!(std::isfinite(link.m) && link.h.allFinite() && link.I.allFinite()))
           throw parameter_error(concat(C::type_name, " \"", C::name.view(), "\": its mass ", c.m(), " kg at [",
-                                       (model.set_offset[s] + c.r_cm()).transpose(),
+                                       (model.set_offset[s] + R.transpose() * c.r_cm()).transpose(),
                                        "] m from its link's origin gives an inertia that overflows; rescale the "
                                        "scene's units"));
       }

@@ -7,15 +7,20 @@
 // main self-check, since the residual comes from the components' equations
 // and the recovered values from the recursive algorithms.
 //
-// Cut forces are found from the leaves inward: in each connection set the
-// flows sum to zero, so the flow at a joint's child-side frame is minus the sum
-// of the others; the joint's own equations then give its parent-side flow.
+// The link kinematics come from the same passes the dynamics use
+// (kinematics.hpp): the pose pass for R, r, ṙ and ω, and the Newton–Euler
+// forward step at the accelerations v̇ for ω̇ and r̈. Cut forces are found from
+// the leaves inward: in each connection set the flows sum to zero, so the flow
+// at an edge's child-side frame is minus the sum of the others; the edge's
+// force and moment balance (core/joint.hpp) then gives its parent-side flow.
 #pragma once
+#include "flange/detail/inline.hpp"
 #include <array>
 #include <string_view>
 
-#include "flange/components/frame_kinematics.hpp"
-#include "flange/dynamics/newton_euler.hpp"
+#include "flange/core/frame_kinematics.hpp"
+#include "flange/dynamics/forward_dynamics.hpp"
+#include "flange/dynamics/kinematics.hpp"
 #include "flange/equations/residual.hpp"
 
 namespace flange {
@@ -24,7 +29,8 @@ template <class S, class T>
 struct dae_solution {
   T t{};
   dae_vector<S, T> y, yd;  ///< every DAE variable, and the derivatives the equations use
-  std::array<T, S::n_q> q{}, qd{}, qdd{};
+  std::array<T, S::n_q> q{};                            ///< joint coordinates
+  std::array<T, S::n_v> v{}, vdot{};                    ///< joint rates and their derivatives
   std::array<frame_kinematics<T>, S::n_frames> frames;  ///< by global frame index
   std::array<wrench<T>, S::n_frames> cut;               ///< F and M at each frame (frame coordinates)
   T kinetic{};            ///< kinetic energy of every body
@@ -46,71 +52,84 @@ struct dae_solution {
   }
 };
 
+namespace detail {
+/// The accelerations pass of recovery: ω̇ and a (with −g) of every link at v̇, dense.
+template <class S, class T, class Motions>
+struct acceleration_pass {
+  const Motions& motions;
+  const T* v;
+  const T* vdot;
+  std::array<Vec3<T>, S::tree.n_links>& wd;
+  std::array<Vec3<T>, S::tree.n_links>& a;
+
+  template <int L, class K>
+  nothing at(const K& k) {
+    wd[L] = k.wd.dense();
+    a[L] = k.a.dense();
+    return {};
+  }
+  template <int L, int C, class K>
+  auto down(const K& k) {
+    constexpr int o = link_info<S, C>::v;
+    return forward_step<T>(k, std::get<C - 1>(motions), v + o, vdot + o);
+  }
+  template <int, int>
+  nothing gather(nothing, nothing) {
+    return {};
+  }
+  template <int, class D>
+  nothing leave(const D&, nothing) {
+    return {};
+  }
+};
+}  // namespace detail
+
 template <class S, class T = double, class State>
 [[nodiscard]] dae_solution<S, T> recover(const S& scene, const T& t, const State& x) {
-  constexpr int N = S::n_q, NL = S::tree.n_links, NF = S::n_frames;
+  constexpr int NL = S::tree.n_links, NF = S::n_frames;
   constexpr auto& tree = S::tree;
   constexpr auto& topo = S::topology;
   constexpr auto& tab = S::table;
   S::require_state_size(x);
   dae_solution<S, T> sol;
   sol.t = t;
-  for (int i = 0; i < N; ++i) {
-    sol.q[i] = x[i];
-    sol.qd[i] = x[N + i];
-  }
-  accelerations_newton_euler(scene, t, sol.q.data(), sol.qd.data(), sol.qdd.data());
-  const joint_state<T> js{sol.q.data(), sol.qd.data(), N};
+  for (int i = 0; i < S::n_q; ++i) sol.q[i] = x[i];
+  for (int i = 0; i < S::n_v; ++i) sol.v[i] = x[S::n_q + i];
+  accelerations(scene, t, sol.q.data(), sol.v.data(), sol.vdot.data());
+  const joint_state<T> js{sol.q.data(), sol.v.data(), S::n_q};
   const Vec3<T> g = scene.gravity().template cast<T>();
 
-  // Link motion, physical (no gravity trick): R, r, ω, ṙ, ω̇, r̈.
-  std::array<frame_kinematics<T>, NL> lk;
-  for (auto& k : lk) {
-    k.r = k.v = k.w = k.a = k.wd = Vec3<T>::Zero();
-    k.R = Mat3<T>::Identity();
+  // Link motion, physical: R, r, ṙ, ω from the pose pass; ω̇ and r̈ from the
+  // forward step at v̇ (whose a carries −g).
+  const auto motions = detail::link_motions<spatial_algebra, T, true>(scene, sol.q.data());
+  const auto lk = detail::link_poses<S>(motions, sol.v.data());
+  std::array<Vec3<T>, NL> wd, a;
+  {
+    detail::acceleration_pass<S, T, std::remove_cvref_t<decltype(motions)>> ctx{motions, sol.v.data(), sol.vdot.data(),
+                                                                               wd, a};
+    detail::walk<S, 0>(ctx, detail::base_kinematics<spatial_algebra, T>(scene));
   }
-  const auto xf = detail::joint_transforms(scene, sol.q.data());
-  detail::for_links<S>([&](auto l) {
-    constexpr int L = decltype(l)::value;
-    using LI = detail::link_info<S, L>;
-    using XF = typename LI::template transform<T>;
-    const auto& xj = std::get<L - 1>(xf);
-    const auto& P = lk[LI::parent];
-    auto& c = lk[L];
-    const T qd = sol.qd[LI::q], qdd = sol.qdd[LI::q];
-    const Vec3<T> p = scene.model().set_offset[LI::parent_set].template cast<T>() + xj.p();
-    const Vec3<T> pd = XF::translates ? xj.axis(qd) : Vec3<T>::Zero();
-    const Vec3<T> pdd = XF::translates ? xj.axis(qdd) : Vec3<T>::Zero();
-    const Mat3<T> E = xj.matrix();
-    c.R = E * P.R;
-    c.r = P.r + P.R.transpose() * p;
-    c.v = P.v + P.R.transpose() * (P.w.cross(p) + pd);
-    c.a = P.a + P.R.transpose() * (P.wd.cross(p) + P.w.cross(P.w.cross(p)) + T(2) * P.w.cross(pd) + pdd);
-    c.w = E * P.w;
-    c.wd = E * P.wd;
-    if constexpr (XF::rotates) {
-      c.w += xj.axis(qd);
-      c.wd += xj.axis(qdd) + c.w.cross(xj.axis(qd));
-    }
-  });
 
-  // Frames: a frame sits at its set's constant offset p in its link.
+  // Frames: a frame sits at its set's constant pose in its link.
   for (int f = 0; f < NF; ++f) {
     const int s = topo.set_of[f];
-    const auto& L = lk[tree.set_link[s]];
+    const int l = tree.set_link[s];
+    const auto& L = lk[l];
     const Vec3<T> p = scene.model().set_offset[s].template cast<T>();
+    const Mat3<T> Rs = scene.model().set_rotation[s].template cast<T>();
+    const Vec3<T> al = L.R.transpose() * a[l] + g;  // the link origin's acceleration, world coordinates
     auto& k = sol.frames[f];
-    k.R = L.R;
-    k.w = L.w;
-    k.wd = L.wd;
+    k.R = Rs * L.R;
+    k.w = Rs * L.w;
+    k.wd = Rs * wd[l];
     k.r = L.r + L.R.transpose() * p;
     k.v = L.v + L.R.transpose() * L.w.cross(p);
-    k.a = L.a + L.R.transpose() * (L.wd.cross(p) + L.w.cross(L.w.cross(p)));
+    k.a = al + L.R.transpose() * (wd[l].cross(p) + L.w.cross(L.w.cross(p)));
   }
 
   // Flows of bodies and force elements, from their own equations.
   for (auto& c : sol.cut) c = {Vec3<T>::Zero(), Vec3<T>::Zero()};
-  detail::for_each_component(scene, [&](auto i, const auto& c) {
+  detail::for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
     using C = std::remove_cvref_t<decltype(c)>;
     constexpr int fb = tab.frame_base[decltype(i)::value];
     if constexpr (C::kind == role::body) sol.cut[fb] = c.flows(sol.frames[fb], g);
@@ -125,8 +144,8 @@ template <class S, class T = double, class State>
       }
     }
   });
-  // Edges from the leaves inward.
-  auto others_in_set = [&](int s, int except) {
+  // Edges (joints and rigid components) from the leaves inward.
+  auto others_in_set = [&](int s, int except) FLANGE_INLINE_LAMBDA {
     wrench<T> w{Vec3<T>::Zero(), Vec3<T>::Zero()};
     for (int f = 0; f < NF; ++f)
       if (topo.set_of[f] == s && f != except) {
@@ -143,12 +162,14 @@ template <class S, class T = double, class State>
     const int child = tab.frame_base[e] + (dir > 0 ? 1 : 0), parent = tab.frame_base[e] + (dir > 0 ? 0 : 1);
     const wrench<T> o = others_in_set(s, child);
     sol.cut[child] = {-o.f, -o.n};
-    detail::visit_component(scene, e, [&](const auto& c) {
+    detail::visit_component(scene, e, [&](const auto& c) FLANGE_INLINE_LAMBDA {
       using C = std::remove_cvref_t<decltype(c)>;
       if constexpr (C::kind == role::joint || C::kind == role::rigid) {
-        T q{0};
-        if constexpr (C::kind == role::joint) q = sol.q[tree.q_index[e]];
-        sol.cut[parent] = dir > 0 ? c.flows_a_from_b(sol.cut[child], q) : c.flows_b_from_a(sol.cut[child], q);
+        const pose<T> x = [&]() FLANGE_INLINE_LAMBDA {
+          if constexpr (C::kind == role::joint) return c.relative_pose(sol.q.data() + tree.q_offset[e]);
+          else return c.template relative_pose<T>();
+        }();
+        sol.cut[parent] = dir > 0 ? flows_a_from_b(x, sol.cut[child]) : flows_b_from_a(x, sol.cut[child]);
       }
     });
   }
@@ -171,29 +192,35 @@ template <class S, class T = double, class State>
     Eigen::Map<Mat3<T>>(sol.yd.data() + S::frame_offset(f, 1)) = -tilde<T>(k.w) * k.R;
   }
   sol.kinetic = sol.gravity_potential = sol.elastic_potential = T(0);
-  detail::for_each_component(scene, [&](auto i, const auto& c) {
+  detail::for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
     using C = std::remove_cvref_t<decltype(c)>;
     constexpr int I = decltype(i)::value;
     constexpr int nf = int(C::frames.size());
-    auto at = [&](int slot) { return S::template slot_offset<I>(slot); };
-    if constexpr (C::kind == role::joint) {
-      const int qi = tree.q_index[I];
-      sol.y(at(4 * nf)) = sol.q[qi];
-      sol.yd(at(4 * nf)) = sol.qd[qi];
-      sol.elastic_potential += c.elastic_energy(sol.q[qi]);
-      if constexpr (C::type == joint_type::revolute) {
-        const Mat3<T> Rrel = c.relative_rotation(sol.q[qi]);
-        Eigen::Map<Mat3<T>>(sol.y.data() + at(4 * nf + 1)) = Rrel;
-        Eigen::Map<Mat3<T>>(sol.yd.data() + at(4 * nf + 1)) =
-            -tilde<T>(c.n().template cast<T>() * sol.qd[qi]) * Rrel;
+    auto at = [&](int slot) FLANGE_INLINE_LAMBDA { return S::template slot_offset<I>(slot); };
+    // An internal's value and rate into y and ẏ (a scalar, a 3-vector or a rotation).
+    auto set = [&](int k, const auto& value, const auto& rate) FLANGE_INLINE_LAMBDA {
+      using V = std::remove_cvref_t<decltype(value)>;
+      const int o = at(4 * nf + k);
+      if constexpr (std::is_same_v<V, T>) {
+        sol.y(o) = value;
+        sol.yd(o) = rate;
+      } else if constexpr (V::SizeAtCompileTime == 3) {
+        sol.y.template segment<3>(o) = value;
+        sol.yd.template segment<3>(o) = rate;
+      } else {
+        Eigen::Map<Mat3<T>>(sol.y.data() + o) = value;
+        Eigen::Map<Mat3<T>>(sol.yd.data() + o) = rate;
       }
+    };
+    if constexpr (C::kind == role::joint) {
+      const T* q = sol.q.data() + tree.q_offset[I];
+      const T* v = sol.v.data() + tree.v_offset[I];
+      c.write_internals(q, v, set);
+      if constexpr (requires { c.elastic_energy(q); }) sol.elastic_potential += c.elastic_energy(q);
     }
     if constexpr (requires { c.internal_values(t, js, &sol.frames[0]); }) {
       const auto iv = c.internal_values(t, js, &sol.frames[tab.frame_base[I]]);
-      for (int i = 0; i < int(iv.size()); ++i) {
-        sol.y(at(4 * nf + i)) = iv[i].first;
-        sol.yd(at(4 * nf + i)) = iv[i].second;
-      }
+      for (int k = 0; k < int(iv.size()); ++k) set(k, iv[k].first, iv[k].second);
     }
     if constexpr (requires { c.potential_energy(t, js, &sol.frames[0]); })
       sol.elastic_potential += c.potential_energy(t, js, &sol.frames[tab.frame_base[I]]);

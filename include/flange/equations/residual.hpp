@@ -8,7 +8,8 @@
 #pragma once
 #include <Eigen/Core>
 
-#include "flange/components/component.hpp"
+#include "flange/core/component.hpp"
+#include "flange/core/joint.hpp"
 #include "flange/scene/scene.hpp"
 
 namespace flange {
@@ -45,19 +46,25 @@ struct eval_context {
   }
 };
 
-/// Offset in y of each joint's coordinate (its first internal: φ or s).
-template <class S>
-constexpr auto joint_coordinate_offsets() {
-  std::array<int, S::n_q == 0 ? 1 : S::n_q> off{};
+/// The joints' coordinates q and rates v read back from their internals in y
+/// and ẏ (each joint's read_state), for inputs written as f(t, x).
+template <class S, class T, class Vy, class Vyd>
+void joint_state_from(const S& scene, const Vy& y, const Vyd& yd, T* q, T* v) {
   [&]<int... I>(std::integer_sequence<int, I...>) {
     (
         [&] {
-          if constexpr (S::template component_type<I>::kind == role::joint)
-            off[S::tree.q_index[I]] = S::template slot_offset<I>(4 * 2);
+          using C = typename S::template component_type<I>;
+          if constexpr (C::kind == role::joint) {
+            constexpr int nf = int(C::frames.size());
+            auto get = [&](int k, bool rate) -> const T* {
+              const int o = S::template slot_offset<I>(4 * nf + k);
+              return rate ? yd.data() + o : y.data() + o;
+            };
+            scene.template component<I>().read_state(get, q + S::tree.q_offset[I], v + S::tree.v_offset[I]);
+          }
         }(),
         ...);
   }(std::make_integer_sequence<int, S::n_components>{});
-  return off;
 }
 
 }  // namespace detail
@@ -68,13 +75,10 @@ template <class S, class T, class Vy, class Vyd>
   static_assert(Vy::SizeAtCompileTime == S::n_storage && Vyd::SizeAtCompileTime == S::n_storage,
                 "flange: residual() takes y and ẏ of length Scene::n_storage (see dae_vector<Scene, T>)");
   residual_vector<S, T> out;
-  constexpr auto qoff = detail::joint_coordinate_offsets<S>();
-  std::array<T, qoff.size()> q{}, qd{};
-  for (int i = 0; i < S::n_q; ++i) {
-    q[i] = y(qoff[i]);
-    qd[i] = yd(qoff[i]);
-  }
-  const joint_state<T> x{q.data(), qd.data(), S::n_q};
+  std::array<T, (S::n_q > 0 ? S::n_q : 1)> q{};
+  std::array<T, (S::n_v > 0 ? S::n_v : 1)> v{};
+  detail::joint_state_from(scene, y, yd, q.data(), v.data());
+  const joint_state<T> x{q.data(), v.data(), S::n_q};
   const Vec3<T> g = scene.gravity().template cast<T>();
   int row = 0;
   [&]<int... I>(std::integer_sequence<int, I...>) {

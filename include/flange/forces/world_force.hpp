@@ -13,8 +13,8 @@
 #pragma once
 #include <boost/hana/tuple.hpp>
 
-#include "flange/components/component.hpp"
-#include "flange/components/frame_kinematics.hpp"
+#include "flange/core/component.hpp"
+#include "flange/core/frame_kinematics.hpp"
 
 namespace flange {
 

@@ -15,7 +15,7 @@
 #include <cmath>
 #include <string_view>
 
-#include "flange/components/component.hpp"
+#include "flange/core/component.hpp"
 
 namespace flange {
 

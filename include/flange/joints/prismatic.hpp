@@ -13,14 +13,21 @@
 // axis_law::friction adds a law along the axis (joints/axis_law.hpp); the last
 // equation becomes  f − (c·(s − s0) + d·ṡ) = −F₂·n, or
 // f − (d·ṡ + F_c·tanh(ṡ / v_s)) = −F₂·n.
+//
+// Motion (core/joint.hpp): nq = nv = 1, q = s, v = ṡ. No rotation (E = 1),
+// the child origin at p = σ·s·n, S = (0, σ·n), no bias; σ = −1 when the joint
+// is connected frame_b toward the World.
 #pragma once
+#include <array>
+
 #include <boost/hana/tuple.hpp>
 
-#include "flange/components/component.hpp"
-#include "flange/components/frame_kinematics.hpp"
+#include "flange/core/component.hpp"
+#include "flange/core/frame_kinematics.hpp"
+#include "flange/core/joint.hpp"
+#include "flange/detail/inline.hpp"
 #include "flange/joints/axis.hpp"
 #include "flange/joints/axis_law.hpp"
-#include "flange/joints/revolute.hpp"
 
 namespace flange {
 
@@ -52,6 +59,53 @@ struct prismatic_params<Axis, Force, axis_law::friction> {
   double f_c = 0;     ///< Coulomb friction force [N]
   double v_s = 1e-3;  ///< regularisation speed [m/s]: tanh(ṡ / v_s)
 };
+
+/// A prismatic joint's motion (core/joint.hpp): E = 1, p = σ·s·n, S = (0, σ·n).
+/// A compile-time axis is not stored (see revolute_motion).
+template <class T, class Axis, int Dir>
+struct prismatic_motion {
+  static constexpr int nv = 1;
+  using axis_t = decltype(axis::signed_unit<T, Axis, Dir>(Vec3d{}));
+  struct no_axis {};
+  identity_rotation E;
+  [[no_unique_address]] std::conditional_t<Axis::fixed, no_axis, axis_t> n_;  ///< σ·n, for a run-time axis
+  axis_t p;  ///< σ·s·n
+  FLANGE_INLINE axis_t axis() const {
+    if constexpr (Axis::fixed) return axial<T, Axis::index>(T(Dir));
+    else return n_;
+  }
+  template <class V>
+  FLANGE_INLINE zero_vec<T> w(const V&) const {
+    return {};
+  }
+  template <class V>
+  FLANGE_INLINE auto pd(const V& v) const {
+    if constexpr (is_no_rates<V>) return zero_vec<T>{};
+    else if constexpr (Axis::fixed) return axial<T, Axis::index>(Dir > 0 ? v[0] : -v[0]);
+    else return v[0] * n_;
+  }
+  template <class V>
+  FLANGE_INLINE zero_vec<T> w_bias(const V&) const {
+    return {};
+  }
+  template <class V>
+  FLANGE_INLINE zero_vec<T> pd_bias(const V&) const {
+    return {};
+  }
+  template <class N, class F>
+  FLANGE_INLINE std::array<T, 1> project(const N&, const F& force) const {
+    if constexpr (Axis::fixed) {
+      const T x = force.template get<Axis::index>();
+      return {Dir > 0 ? x : -x};
+    } else {
+      return {value_of<T>(dot(n_, force))};
+    }
+  }
+  template <int K>
+  FLANGE_INLINE motion_pair<zero_vec<T>, axis_t> col() const {
+    return {{}, axis()};
+  }
+};
 }  // namespace detail
 
 template <fixed_string Name, class Axis = axis::any, class Force = double, class Law = axis_law::none>
@@ -60,13 +114,18 @@ class Prismatic {
   static constexpr auto name = Name;
   static constexpr std::string_view type_name = "Prismatic";
   static constexpr role kind = role::joint;
-  static constexpr joint_type type = joint_type::prismatic;
   using axis_type = Axis;
   static constexpr std::array<std::string_view, 2> frames{"frame_a", "frame_b"};
   static constexpr std::array<internal_decl, 1> internals{{{"s", expr::var_kind::scalar}}};
-  static constexpr bool has_input = true;
-
   static constexpr bool has_law = !std::is_same_v<Law, axis_law::none>;
+
+  // ---------------------------------------------------------- motion
+  static constexpr int nq = 1, nv = 1;
+  static constexpr bool reversible = true;
+  /// It does not turn; it slides in the plane normal to k when its axis is another coordinate axis.
+  static constexpr int planar_normal() { return -2; }
+  static constexpr bool moves_in_plane(int k) { return Axis::fixed && Axis::index != k; }
+
   using params = detail::prismatic_params<Axis, Force, Law>;
 
   explicit Prismatic(params p) : f_(std::move(p.f)) {
@@ -79,20 +138,62 @@ class Prismatic {
   }
 
   [[nodiscard]] const Vec3d& n() const { return n_; }
-
-  /// The axis law's potential energy at q (a spring-damper's ½·c·(q − q₀)², else 0).
-  template <class T>
-  [[nodiscard]] T elastic_energy(const T& q) const {
-    return detail::axis_law_potential<Law>(law_, q);
-  }
   [[nodiscard]] const Force& f() const { return f_; }
 
-  /// The generalised force on s: the axial force input at (t, x), plus the
+  [[nodiscard]] static std::array<double, 1> neutral() { return {0.0}; }
+
+  template <class T, int Dir, bool>
+  [[nodiscard]] FLANGE_INLINE auto motion(const T* q) const {
+    detail::prismatic_motion<T, Axis, Dir> m;
+    if constexpr (Axis::fixed) {
+      m.p = axial<T, Axis::index>(Dir > 0 ? q[0] : -q[0]);
+    } else {
+      m.n_ = axis::signed_unit<T, Axis, Dir>(n_);
+      m.p = q[0] * m.n_;
+    }
+    return m;
+  }
+  template <class T>
+  void qdot(const T*, const T* v, T* qd) const {
+    qd[0] = v[0];
+  }
+  template <class T>
+  void normalize(T*) const {}
+  template <class T>
+  [[nodiscard]] pose<T> relative_pose(const T* q) const {
+    return {Mat3<T>::Identity(), q[0] * n_.cast<T>()};
+  }
+  template <class T, class Set>
+  void write_internals(const T* q, const T* v, Set&& set) const {
+    set(0, q[0], v[0]);
+  }
+  template <class T, class Get>
+  void read_state(Get&& get, T* q, T* v) const {
+    q[0] = *get(0, false);
+    v[0] = *get(0, true);
+  }
+
+  /// The generalized force on s: the axial force input at (t, x), plus the
   /// axis law's force (joints/axis_law.hpp).
   template <class T>
-  [[nodiscard]] T generalized_force(const T& t, const joint_state<T>& x, int q) const {
-    if constexpr (has_law) return eval_input(f_, t, x) + detail::axis_law_force<Law>(law_, x.q(q), x.qd(q));
-    else return eval_input(f_, t, x);
+  void generalized_force(const T& t, const joint_state<T>& x, const T* q, const T* v, T* tau) const {
+    if constexpr (has_law) tau[0] = eval_input(f_, t, x) + detail::axis_law_force<Law>(law_, q[0], v[0]);
+    else tau[0] = eval_input(f_, t, x);
+  }
+  /// A state set by hand: the coordinate and its rate.
+  struct state {
+    double q = 0, v = 0;
+  };
+  void write_state(const state& s, double* q, double* v) const {
+    detail::require_finite(name.view(), type_name, "the initial coordinate", s.q);
+    detail::require_finite(name.view(), type_name, "the initial rate", s.v);
+    q[0] = s.q;
+    v[0] = s.v;
+  }
+  /// The axis law's potential energy at q (a spring-damper's ½·c·(s − s0)², else 0).
+  template <class T>
+  [[nodiscard]] T elastic_energy(const T* q) const {
+    return detail::axis_law_potential<Law>(law_, q[0]);
   }
 
   static constexpr auto s = internal_<2, 0, expr::var_kind::scalar>;
@@ -105,16 +206,6 @@ class Prismatic {
                                    eq(F_<1>, -F_<0>),                               //
                                    eq(M_<1>, -M_<0> + s * cross(n, F_<0>)),         //
                                    axis_equation(n));
-  }
-
-  template <class T>
-  [[nodiscard]] wrench<T> flows_a_from_b(const wrench<T>& b, const T& q) const {
-    const Vec3<T> Fa = -b.f;
-    return {Fa, (q * n_.cast<T>()).cross(Fa) - b.n};
-  }
-  template <class T>
-  [[nodiscard]] wrench<T> flows_b_from_a(const wrench<T>& a, const T& q) const {
-    return {-a.f, -a.n + (q * n_.cast<T>()).cross(a.f)};
   }
 
  private:

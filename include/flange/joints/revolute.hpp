@@ -13,6 +13,10 @@
 // Revolute<"elbow", axis::z> fixes the axis at compile time; Revolute<"elbow">
 // takes it at construction.
 //
+// Motion (core/joint.hpp): nq = nv = 1, q = φ, v = φ̇. E = R_rel(σ·n, φ), the
+// child origin stays at frame_a's (p = 0), S = (σ·n, 0), no bias; σ = −1 when
+// the joint is connected frame_b toward the World (R_rel(n, φ)ᵀ = R_rel(−n, φ)).
+//
 // Revolute<"elbow", axis::z, axis_law::spring_damper> adds a linear spring
 // (stiffness c, rest angle φ0) and damper (d) acting along the axis, like a
 // Modelica SpringDamper on the joint's 1-D flange. The last equation becomes
@@ -31,18 +35,20 @@
 // Below |φ̇| ≈ v_s the joint creeps instead of sticking; choose v_s well below
 // the speeds that matter (default 1e-3 rad/s).
 #pragma once
+#include <array>
+#include <cmath>
+
 #include <boost/hana/tuple.hpp>
 
-#include "flange/components/component.hpp"
-#include "flange/components/frame_kinematics.hpp"
+#include "flange/core/component.hpp"
+#include "flange/core/frame_kinematics.hpp"
+#include "flange/core/joint.hpp"
+#include "flange/detail/inline.hpp"
 #include "flange/joints/axis.hpp"
 #include "flange/joints/axis_law.hpp"
 #include "flange/math/rotation.hpp"
 
 namespace flange {
-
-enum class joint_type { revolute, prismatic };
-
 
 namespace detail {
 template <class Axis, class Law>
@@ -65,6 +71,56 @@ struct revolute_params<Axis, axis_law::friction> {
   double f_c = 0;            ///< Coulomb friction torque [N m]
   double v_s = 1e-3;         ///< regularisation speed [rad/s]: tanh(φ̇ / v_s)
 };
+
+/// A revolute joint's motion (core/joint.hpp): E = R_rel(σ·n, φ), S = (σ·n, 0).
+/// A compile-time axis is not stored: σ·e_I is a constant of the type, so
+/// the compiler folds it into every product.
+template <class T, class Axis, int Dir>
+struct revolute_motion {
+  static constexpr int nv = 1;
+  using rotation_t = std::conditional_t<Axis::fixed, coordinate_rotation<T, (Axis::fixed ? Axis::index : 0)>, Mat3<T>>;
+  using axis_t = decltype(axis::signed_unit<T, Axis, Dir>(Vec3d{}));
+  struct no_axis {};
+  rotation_t E;
+  [[no_unique_address]] std::conditional_t<Axis::fixed, no_axis, axis_t> n_;  ///< σ·n, for a run-time axis
+  zero_vec<T> p{};
+  /// σ·n.
+  FLANGE_INLINE axis_t axis() const {
+    if constexpr (Axis::fixed) return axial<T, Axis::index>(T(Dir));
+    else return n_;
+  }
+  template <class V>
+  FLANGE_INLINE auto w(const V& v) const {
+    if constexpr (is_no_rates<V>) return zero_vec<T>{};
+    else if constexpr (Axis::fixed) return axial<T, Axis::index>(Dir > 0 ? v[0] : -v[0]);
+    else return v[0] * n_;
+  }
+  template <class V>
+  FLANGE_INLINE zero_vec<T> pd(const V&) const {
+    return {};
+  }
+  template <class V>
+  FLANGE_INLINE zero_vec<T> w_bias(const V&) const {
+    return {};
+  }
+  template <class V>
+  FLANGE_INLINE zero_vec<T> pd_bias(const V&) const {
+    return {};
+  }
+  template <class N, class F>
+  FLANGE_INLINE std::array<T, 1> project(const N& torque, const F&) const {
+    if constexpr (Axis::fixed) {
+      const T x = torque.template get<Axis::index>();
+      return {Dir > 0 ? x : -x};
+    } else {
+      return {value_of<T>(dot(n_, torque))};
+    }
+  }
+  template <int K>
+  FLANGE_INLINE motion_pair<axis_t, zero_vec<T>> col() const {
+    return {axis(), {}};
+  }
+};
 }  // namespace detail
 
 template <fixed_string Name, class Axis = axis::any, class Law = axis_law::none>
@@ -73,14 +129,20 @@ class Revolute {
   static constexpr auto name = Name;
   static constexpr std::string_view type_name = "Revolute";
   static constexpr role kind = role::joint;
-  static constexpr joint_type type = joint_type::revolute;
   using axis_type = Axis;
   static constexpr std::array<std::string_view, 2> frames{"frame_a", "frame_b"};
   static constexpr std::array<internal_decl, 2> internals{
       {{"φ", expr::var_kind::scalar}, {"R_rel", expr::var_kind::rot}}};
   static constexpr bool has_spring_damper = std::is_same_v<Law, axis_law::spring_damper>;
   static constexpr bool has_friction = std::is_same_v<Law, axis_law::friction>;
-  static constexpr bool has_input = has_spring_damper || has_friction;
+  static constexpr bool has_law = has_spring_damper || has_friction;
+
+  // ---------------------------------------------------------- motion
+  static constexpr int nq = 1, nv = 1;
+  static constexpr bool reversible = true;
+  /// It turns about its axis: a coordinate axis makes it planar about that axis.
+  static constexpr int planar_normal() { return Axis::fixed ? Axis::index : -1; }
+  static constexpr bool moves_in_plane(int k) { return Axis::fixed && Axis::index == k; }
 
   using params = detail::revolute_params<Axis, Law>;
 
@@ -92,19 +154,74 @@ class Revolute {
     if constexpr (has_friction) law_ = detail::make_axis_law<Law>(name.view(), "Revolute", p, 0.0);
   }
 
-  /// The generalised force of the axis law on φ: −c·(φ − φ0) − d·φ̇, or
-  /// −d·φ̇ − F_c·tanh(φ̇ / v_s).
-  template <class T>
-  [[nodiscard]] T generalized_force(const T&, const joint_state<T>& x, int q) const {
-    return detail::axis_law_force<Law>(law_, x.q(q), x.qd(q));
-  }
-
   [[nodiscard]] const Vec3d& n() const { return n_; }
 
-  /// The axis law's potential energy at q (a spring-damper's ½·c·(q − q₀)², else 0).
+  [[nodiscard]] static std::array<double, 1> neutral() { return {0.0}; }
+
+  /// The motion at φ = q[0]. Without NeedRotation the sine and cosine of a
+  /// coordinate-axis rotation are not computed (nothing will apply it).
+  template <class T, int Dir, bool NeedRotation>
+  [[nodiscard]] FLANGE_INLINE auto motion(const T* q) const {
+    detail::revolute_motion<T, Axis, Dir> m;
+    if constexpr (Axis::fixed) {
+      if constexpr (NeedRotation) {
+        using std::cos;
+        using std::sin;
+        m.E.c = cos(q[0]);
+        m.E.s = Dir > 0 ? sin(q[0]) : -sin(q[0]);
+      } else {
+        m.E.c = T(1);  // never applied (links.hpp: need_rotation)
+        m.E.s = T(0);
+      }
+    } else {
+      m.n_ = axis::signed_unit<T, Axis, Dir>(n_);
+      m.E = axis_rotation<T>(m.n_.dense(), q[0]);
+    }
+    return m;
+  }
   template <class T>
-  [[nodiscard]] T elastic_energy(const T& q) const {
-    return detail::axis_law_potential<Law>(law_, q);
+  void qdot(const T*, const T* v, T* qd) const {
+    qd[0] = v[0];
+  }
+  template <class T>
+  void normalize(T*) const {}
+  template <class T>
+  [[nodiscard]] pose<T> relative_pose(const T* q) const {
+    return {axis_rotation<T>(n_.cast<T>(), q[0]), Vec3<T>::Zero()};
+  }
+  template <class T, class Set>
+  void write_internals(const T* q, const T* v, Set&& set) const {
+    const Mat3<T> R = axis_rotation<T>(n_.cast<T>(), q[0]);
+    set(0, q[0], v[0]);
+    set(1, R, Mat3<T>(-tilde<T>(n_.cast<T>() * v[0]) * R));
+  }
+  template <class T, class Get>
+  void read_state(Get&& get, T* q, T* v) const {
+    q[0] = *get(0, false);
+    v[0] = *get(0, true);
+  }
+
+  /// The axis law's generalized force on φ: −c·(φ − φ0) − d·φ̇, or
+  /// −d·φ̇ − F_c·tanh(φ̇ / v_s).
+  template <class T>
+    requires has_law
+  void generalized_force(const T&, const joint_state<T>&, const T* q, const T* v, T* tau) const {
+    tau[0] = detail::axis_law_force<Law>(law_, q[0], v[0]);
+  }
+  /// A state set by hand: the coordinate and its rate.
+  struct state {
+    double q = 0, v = 0;
+  };
+  void write_state(const state& s, double* q, double* v) const {
+    detail::require_finite(name.view(), type_name, "the initial coordinate", s.q);
+    detail::require_finite(name.view(), type_name, "the initial rate", s.v);
+    q[0] = s.q;
+    v[0] = s.v;
+  }
+  /// The axis law's potential energy at q (a spring-damper's ½·c·(φ − φ0)², else 0).
+  template <class T>
+  [[nodiscard]] T elastic_energy(const T* q) const {
+    return detail::axis_law_potential<Law>(law_, q[0]);
   }
 
   static constexpr auto phi = internal_<2, 0, expr::var_kind::scalar>;
@@ -122,25 +239,10 @@ class Revolute {
         axis_equation(n));
   }
 
-  template <class T>
-  [[nodiscard]] Mat3<T> relative_rotation(const T& q) const {
-    return axis_rotation<T>(n_.cast<T>(), q);
-  }
-  template <class T>
-  [[nodiscard]] wrench<T> flows_a_from_b(const wrench<T>& b, const T& q) const {
-    const Mat3<T> Rt = relative_rotation(q).transpose();
-    return {-(Rt * b.f), -(Rt * b.n)};
-  }
-  template <class T>
-  [[nodiscard]] wrench<T> flows_b_from_a(const wrench<T>& a, const T& q) const {
-    const Mat3<T> R = relative_rotation(q);
-    return {-(R * a.f), -(R * a.n)};
-  }
-
  private:
   auto axis_equation(const expr::param<Vec3d>& n) const {
     using namespace expr;
-    if constexpr (has_input) return eq(dot(M_<1>, n), flange::detail::axis_law_resistance<Law>(law_, phi, "φ0"));
+    if constexpr (has_law) return eq(dot(M_<1>, n), flange::detail::axis_law_resistance<Law>(law_, phi, "φ0"));
     else return eq(zero<shape::scalar>{}, dot(M_<1>, n));
   }
 

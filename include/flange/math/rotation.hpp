@@ -11,17 +11,18 @@
 #pragma once
 #include <cmath>
 
+#include "flange/detail/inline.hpp"
 #include "flange/math/types.hpp"
 
 namespace flange {
 
 /// ã, the matrix with ã·b = a × b.
 template <class T>
-[[nodiscard]] Mat3<T> tilde(const Vec3<T>& a) {
+[[nodiscard]] FLANGE_INLINE Mat3<T> tilde(const Vec3<T>& a) {
   Mat3<T> m;
-  m << T(0), -a(2), a(1),  //
-      a(2), T(0), -a(0),   //
-      -a(1), a(0), T(0);
+  m(0, 0) = T(0), m(0, 1) = -a(2), m(0, 2) = a(1);
+  m(1, 0) = a(2), m(1, 1) = T(0), m(1, 2) = -a(0);
+  m(2, 0) = -a(1), m(2, 1) = a(0), m(2, 2) = T(0);
   return m;
 }
 
@@ -32,13 +33,20 @@ template <class T>
                  (w(1, 0) - w(0, 1)) / T(2));
 }
 
-/// R = n·n' + (1 − n·n')·cos φ − ñ·sin φ, for a unit axis n.
+/// R = n·n' + (1 − n·n')·cos φ − ñ·sin φ, for a unit axis n, written out
+/// element by element (Rodrigues' form transposed).
 template <class T>
-[[nodiscard]] Mat3<T> axis_rotation(const Vec3<T>& n, const T& phi) {
+[[nodiscard]] FLANGE_INLINE Mat3<T> axis_rotation(const Vec3<T>& n, const T& phi) {
   using std::cos;
   using std::sin;
-  const Mat3<T> nn = n * n.transpose();
-  return nn + (Mat3<T>::Identity() - nn) * cos(phi) - tilde(n) * sin(phi);
+  const T c = cos(phi), s = sin(phi), k = T(1) - c;
+  const T kx = k * n(0), ky = k * n(1), kz = k * n(2);
+  const T sx = s * n(0), sy = s * n(1), sz = s * n(2);
+  Mat3<T> R;
+  R(0, 0) = kx * n(0) + c, R(0, 1) = kx * n(1) + sz, R(0, 2) = kx * n(2) - sy;
+  R(1, 0) = ky * n(0) - sz, R(1, 1) = ky * n(1) + c, R(1, 2) = ky * n(2) + sx;
+  R(2, 0) = kz * n(0) + sy, R(2, 1) = kz * n(1) - sx, R(2, 2) = kz * n(2) + c;
+  return R;
 }
 
 /// ω from ω̃ = R·Ṙ'. Takes the skew part, so a slightly non-orthogonal R
@@ -57,5 +65,33 @@ template <class T>
   const Mat3<T> A = R1 * R2.transpose();
   return Vec3<T>(atan2(A(2, 1), A(0, 0)), atan2(-A(2, 0), A(1, 1)), atan2(A(1, 0), A(2, 2)));
 }
+
+/// An orientation of one frame relative to another, in the paper's
+/// convention: R rotates the reference frame's coordinates into the turned
+/// frame's (R = n·n' + (1 − n·n')·cos θ − ñ·sin θ for a turn θ about n).
+/// Initial states of 3-D joints and FixedRotation take one of these, so
+/// nobody writes quaternion components by hand.
+struct orientation {
+  Mat3<double> R = Mat3<double>::Identity();
+
+  /// Turned by angle about n (any non-zero length).
+  static orientation axis_angle(const Vec3<double>& n, double angle) {
+    return {axis_rotation<double>(n.normalized(), angle)};
+  }
+  /// Modelica's Cardan angles (axesRotations {1, 2, 3}): turned about x by
+  /// a, then about the new y by b, then about the new z by c.
+  static orientation cardan(double a, double b, double c) {
+    return {axis_rotation<double>(Vec3<double>::UnitZ(), c) * axis_rotation<double>(Vec3<double>::UnitY(), b) *
+            axis_rotation<double>(Vec3<double>::UnitX(), a)};
+  }
+  /// URDF's roll, pitch, yaw: turned about the reference's x by roll, then
+  /// its y by pitch, then its z by yaw (fixed axes).
+  static orientation rpy(double roll, double pitch, double yaw) {
+    return {axis_rotation<double>(Vec3<double>::UnitX(), roll) * axis_rotation<double>(Vec3<double>::UnitY(), pitch) *
+            axis_rotation<double>(Vec3<double>::UnitZ(), yaw)};
+  }
+  /// A rotation matrix in the paper's convention (checked orthogonal where it is used).
+  static orientation matrix(const Mat3<double>& R) { return {R}; }
+};
 
 }  // namespace flange

@@ -14,7 +14,7 @@
 #include "flange/components/fixed_translation.hpp"
 #include "flange/components/world.hpp"
 #include "flange/joints/revolute.hpp"
-#include "flange/scene/scene.hpp"
+#include "flange/simulate/system.hpp"
 
 namespace flange::models {
 

@@ -21,7 +21,7 @@
 #include "flange/forces/torque.hpp"
 #include "flange/joints/prismatic.hpp"
 #include "flange/joints/revolute.hpp"
-#include "flange/scene/scene.hpp"
+#include "flange/simulate/system.hpp"
 
 namespace flange::models {
 

@@ -32,7 +32,12 @@
 #include "flange/forces/world_force.hpp"
 #include "flange/joints/prismatic.hpp"
 #include "flange/joints/revolute.hpp"
-#include "flange/scene/scene.hpp"
+#include "flange/joints/cylindrical.hpp"
+#include "flange/joints/free_motion.hpp"
+#include "flange/joints/planar.hpp"
+#include "flange/joints/spherical.hpp"
+#include "flange/joints/universal.hpp"
+#include "flange/simulate/system.hpp"
 
 namespace flange::models {
 
@@ -42,6 +47,8 @@ struct tree_shape {
   bool planar = false;
   std::array<int, max_joints> parent{};       ///< −1: the World
   std::array<bool, max_joints> prismatic{};
+  std::array<int, max_joints> kind{};         ///< 0 Revolute or Prismatic (as prismatic says), 2 Spherical,
+                                              ///< 3 Universal, 4 Cylindrical, 5 Planar, 6 FreeMotion
   std::array<int, max_joints> axis{};         ///< 0, 1, 2: axis::x, y, z as a type; 3: axis::any
   std::array<int, max_joints> law{};          ///< 0 none, 1 spring-damper, 2 friction
   std::array<bool, max_joints> offset{};      ///< a FixedTranslation "o<i>" before the joint
@@ -71,8 +78,10 @@ struct lcg {
 };
 }  // namespace detail
 
-/// A random tree of n joints (see above); the same seed gives the same shape.
-constexpr tree_shape random_tree_shape(unsigned seed, int n, bool planar) {
+/// A random tree of n joints (see above); the same seed gives the same
+/// shape. With every_joint, the joints are drawn from every kind (a planar
+/// shape: Revolute, Prismatic and Planar in the plane).
+constexpr tree_shape random_tree_shape(unsigned seed, int n, bool planar, bool every_joint = false) {
   tree_shape t{};
   t.n = n;
   t.planar = planar;
@@ -96,6 +105,16 @@ constexpr tree_shape random_tree_shape(unsigned seed, int n, bool planar) {
     t.torque[i] = r.below(3) == 0;
     t.line_law[i] = r.below(3);
     t.load[i] = r.below(3) == 0 ? 1 + r.below(4) : 0;
+    if (every_joint) {
+      const int k = planar ? (r.below(3) == 0 ? 5 : 0) : r.below(7);
+      t.kind[i] = k == 1 ? 0 : k;
+      if (t.kind[i] != 0) {
+        t.prismatic[i] = false;
+        if (t.body[i] == 3) t.body[i] = 0;  // a point mass needs a joint that does not turn
+        if (t.kind[i] == 5 || t.kind[i] == 6) t.reversed[i] = false;  // connected frame_a toward the World
+        if (planar) t.axis[i] = 2;
+      }
+    }
   }
   // A line force from joint i's child frame (behind its offset) to a frame
   // that is not below joint i: the path between its ends then crosses the
@@ -114,6 +133,7 @@ template <int N>
 struct tree_params {
   std::array<Vec3d, N> offset;  ///< o<i>'s d
   std::array<Vec3d, N> axis;    ///< used where the axis is axis::any
+  std::array<Vec3d, N> axis2;   ///< a Universal's second axis, a Planar's first direction
   std::array<double, N> m;
   std::array<Mat3d, N> J;
   std::array<Vec3d, N> r_cm;
@@ -155,7 +175,18 @@ auto tree_joint(const tree_params<N>& p) {
   using A = tree_axis<Sh.axis[I]>;
   using Law = tree_law<Sh.law[I]>;
   constexpr auto name = indexed_name<"j", I>();
-  if constexpr (Sh.prismatic[I]) {
+  if constexpr (Sh.kind[I] == 2) {
+    return Spherical<name>{};
+  } else if constexpr (Sh.kind[I] == 3) {
+    return Universal<name, A, axis::any>({.n_a = p.axis[I], .n_b = p.axis2[I]});
+  } else if constexpr (Sh.kind[I] == 4) {
+    return Cylindrical<name, A>({.n = p.axis[I]});
+  } else if constexpr (Sh.kind[I] == 5) {
+    if constexpr (Sh.planar) return Planar<name, axis::z, axis::x>{};
+    else return Planar<name>({.n = p.axis[I], .n_x = p.axis2[I]});
+  } else if constexpr (Sh.kind[I] == 6) {
+    return FreeMotion<name>{};
+  } else if constexpr (Sh.prismatic[I]) {
     using J = Prismatic<name, A, double, Law>;
     typename J::params q{};
     if constexpr (!A::fixed || Sh.law[I] != 0) q.n = p.axis[I];

@@ -8,11 +8,9 @@
 //
 // See docs/diagnostics.md for each message with an example.
 #pragma once
+#include "flange/detail/always_false.hpp"
 
 namespace flange {
-
-template <class... T>
-inline constexpr bool always_false = false;
 
 template <int N> struct equations_declared {};
 template <int N> struct equations_needed {};

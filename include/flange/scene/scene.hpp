@@ -9,8 +9,12 @@
 //
 // The scene's type carries its whole structure; its value carries parameters.
 // Everything structural (connection sets, counts, layout of the flattened DAE
-// vector, kinematic tree) is a constant expression, checked by static_asserts
-// whose messages name the culprit (scene/diagnostics.hpp).
+// vector, kinematic tree, the state layout) is a constant expression, checked
+// by static_asserts whose messages name the culprit (scene/diagnostics.hpp).
+//
+// This layer knows structure only. The state derivative, the precomputed
+// dynamics constants and the Odeint system are added on top of a Scene by
+// flange::System (simulate/system.hpp), which flange::scene(...) returns.
 #pragma once
 #include <array>
 #include <string_view>
@@ -23,28 +27,31 @@
 #include <boost/hana/type.hpp>
 #include <boost/hana/unpack.hpp>
 
-#include "flange/components/component.hpp"
-#include "flange/dynamics/forward_dynamics.hpp"
-#include "flange/dynamics/model.hpp"
+#include "flange/core/component.hpp"
+#include "flange/core/joint.hpp"
+#include "flange/detail/type_list.hpp"
 #include "flange/scene/connect.hpp"
 #include "flange/scene/diagnostics.hpp"
+#include "flange/scene/joint_check.hpp"
 #include "flange/scene/topology.hpp"
 
 namespace flange {
 
 namespace detail {
-template <class...>
-struct type_list {};
-
-template <int I, class... Ts>
-using nth_t = std::tuple_element_t<I, std::tuple<Ts...>>;
-
 /// Instantiates Diag<the I-th of Ts> when I ≥ 0, which fails with its message.
 template <int I, template <class...> class Diag, class... Ts>
 constexpr bool report() {
   if constexpr (I >= 0) (void)sizeof(Diag<nth_t<I, Ts...>>);
   return true;
 }
+
+/// report<I, Diag, Ts...> over a type_list<Ts...>.
+template <int I, template <class...> class Diag, class List>
+struct report_list;
+template <int I, template <class...> class Diag, class... Ts>
+struct report_list<I, Diag, type_list<Ts...>> {
+  static constexpr bool value = report<I, Diag, Ts...>();
+};
 
 template <class E>
 struct equation_count;
@@ -118,6 +125,15 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
           t.frame_base[c] = base;
           for (int k = 0; k < int(Cs::frames.size()); ++k) t.frame_names[c][k] = Cs::frames[k];
           base += int(Cs::frames.size());
+          if constexpr (Cs::kind == role::joint) {
+            if constexpr (joint_requirements::sizes<Cs>) {
+              t.nq[c] = Cs::nq;
+              t.nv[c] = Cs::nv;
+            }
+          }
+          if constexpr (Cs::kind == role::rigid) {
+            if constexpr (requires { Cs::rotation_axis; }) t.rigid_rotation[c] = Cs::rotation_axis;
+          }
           ++c;
         }(),
         ...);
@@ -140,6 +156,31 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
   static_assert((detail::report<topology.second_world, diagnostic::two_worlds, Cs...>()));
   static_assert((detail::report<topology.n_worlds == 1 ? topology.unreached : -1, diagnostic::not_connected_to_world,
                                 Cs...>()));
+  static_assert((detail::check_joints<Cs...>()));
+  /// Whether every joint models the joint concept (core/joint.hpp).
+  static constexpr bool joints_complete = (detail::complete_joint<Cs>() && ...);
+
+ private:
+  /// The first joint whose type cannot be connected frame_b toward the World but is.
+  static constexpr int first_backwards_joint() {
+    int i = 0, found = -1;
+    (
+        [&] {
+          if constexpr (Cs::kind == role::joint) {
+            if constexpr (joint_requirements::reversible<Cs>) {
+              if (!Cs::reversible && found < 0 && tree.link_of_joint[i] >= 0 && tree.link_dir[tree.link_of_joint[i]] < 0)
+                found = i;
+            }
+          }
+          ++i;
+        }(),
+        ...);
+    return found;
+  }
+
+ public:
+  static_assert(detail::report<topology.ok() ? first_backwards_joint() : -1, diagnostic::joint_connected_backwards,
+                               Cs...>());
 
   // A line force needs its two ends apart.
  private:
@@ -239,13 +280,37 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
   /// Global index of the frame "component.frame".
   static constexpr int frame_index(std::string_view name) { return detail::find_frame(table, name); }
 
-  // ---------------------------------------------------------- joints
+  // ---------------------------------------------------------- joints and the state
+  /// The number of joint coordinates q and of joint rates v (they differ for
+  /// quaternions), joints in scene order.
   static constexpr int n_q = tree.n_q;
-  /// Index in q of the named joint: joints are numbered in scene order.
-  static constexpr int q_index(std::string_view joint) { return tree.q_index[index_of(joint)]; }
+  static constexpr int n_v = tree.n_v;
+  static constexpr int n_joints = tree.n_joints;
+  /// Offset in q and in v of the named joint's coordinates and rates.
+  static constexpr int q_offset(std::string_view joint) { return tree.q_offset[index_of(joint)]; }
+  static constexpr int v_offset(std::string_view joint) { return tree.v_offset[index_of(joint)]; }
+
+  /// The state x = (q, v): every joint's coordinates, then every joint's rates.
+  static constexpr int n_state = n_q + n_v;
+  using state_type = std::array<double, n_state>;
+
+  /// A state of the wrong size is a compile-time error when its type fixes
+  /// the size, and an exception naming both sizes when it does not
+  /// (std::vector, Odeint's most common state): never an out-of-bounds read.
+  template <class State>
+  static void require_state_size(const State& x) {
+    constexpr int n = detail::static_size<State>();
+    static_assert(detail::report<(n >= 0 && n != n_state) ? 0 : -1, diagnostic::wrong_state_size,
+                                 detail::type_list<state_size_given<n>, state_size_needed<n_state>>>());
+    if constexpr (n < 0) {
+      if (static_cast<std::size_t>(x.size()) != std::size_t(n_state)) [[unlikely]]
+        throw error(detail::concat("flange: a state of size ", x.size(), " was given, but the scene's state x = (q, v) has ",
+                                   n_state, " entries (", n_q, " joint coordinates and ", n_v, " rates)"));
+    }
+  }
 
   // ---------------------------------------------------------- values
-  explicit Scene(Cs... cs) : components_(std::move(cs)...), model_(detail::build_model(*this)) {}
+  explicit Scene(Cs... cs) : components_(std::move(cs)...) {}
 
   template <int I>
   [[nodiscard]] const auto& component() const {
@@ -263,49 +328,8 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
   [[nodiscard]] Vec3d gravity() const { return component<topology.world < 0 ? 0 : topology.world>().g(); }
   static constexpr bool has_gravity = component_type<topology.world < 0 ? 0 : topology.world>::has_gravity;
 
-  /// Constants the dynamics precompute (link inertias, set offsets).
-  [[nodiscard]] const auto& model() const { return model_; }
-
-  // ---------------------------------------------------------- as an ODE
-  /// The state x = (q, q̇): joint coordinates then rates, joints in scene order.
-  static constexpr int n_state = 2 * n_q;
-  using state_type = std::array<double, n_state>;
-
-  /// A state of the wrong size is a compile-time error when its type fixes
-  /// the size, and an exception naming both sizes when it does not
-  /// (std::vector, Odeint's most common state): never an out-of-bounds read.
-  template <class State>
-  static void require_state_size(const State& x) {
-    constexpr int n = detail::static_size<State>();
-    static_assert(detail::report<(n >= 0 && n != n_state) ? 0 : -1, diagnostic::wrong_state_size,
-                                 detail::type_list<state_size_given<n>, state_size_needed<n_state>>>());
-    if constexpr (n < 0) {
-      if (static_cast<std::size_t>(x.size()) != std::size_t(n_state)) [[unlikely]]
-        throw error(detail::concat("flange: a state of size ", x.size(), " was given, but the scene's state x = (q, q̇) has ",
-                                   n_state, " entries (", n_q, " joint coordinates and their rates)"));
-    }
-  }
-
-  /// ẋ = f(x, t): the Boost.Odeint system signature; q̈ by the algorithm the
-  /// scene's type calls for (dynamics/forward_dynamics.hpp). Works for any container
-  /// with data() (std::array, Eigen fixed-size vectors) and scalar type.
-  template <class State, class T>
-  void operator()(const State& x, State& dxdt, const T t) const {
-    static_assert(detail::report<(topology.ok() ? tree.loop : -1), diagnostic::kinematic_loop, Cs...>());
-    static_assert(detail::report<(topology.ok() && tree.loop < 0 ? tree.floating : -1),
-                                 diagnostic::not_tied_through_joints, Cs...>());
-    require_state_size(x);
-    require_state_size(dxdt);
-    using V = std::remove_cvref_t<decltype(x[0])>;
-    const V* xs = x.data();
-    V* d = dxdt.data();
-    for (int i = 0; i < n_q; ++i) d[i] = xs[n_q + i];
-    accelerations(*this, static_cast<V>(t), xs, xs + n_q, d + n_q);
-  }
-
  private:
   boost::hana::tuple<Cs...> components_;
-  detail::dynamics_model<tree.n_links, (topology.n_sets == 0 ? 1 : topology.n_sets)> model_;
 };
 
 namespace detail {
@@ -329,9 +353,10 @@ struct split<A, Rest...> {
 };
 }  // namespace detail
 
-/// Builds a scene from components and connections, in any order.
+/// The structure of a scene from components and connections, in any order
+/// (flange::scene(...) in simulate/system.hpp adds the dynamics on top).
 template <class... Args>
-auto scene(Args... args) {
+auto compose(Args... args) {
   namespace hana = boost::hana;
   using connections = typename detail::split<Args...>::connections;
   auto is_component = [](auto const& a) { return hana::bool_c<!is_connection<std::decay_t<decltype(a)>>::value>; };

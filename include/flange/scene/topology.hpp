@@ -6,7 +6,7 @@
 #include <array>
 #include <string_view>
 
-#include "flange/components/component.hpp"
+#include "flange/core/component.hpp"
 
 namespace flange::detail {
 
@@ -21,6 +21,8 @@ struct scene_table {
   std::array<int, NC> frame_base{};
   std::array<std::array<std::string_view, max_frames_per_component>, NC> frame_names{};
   std::array<std::string_view, NK> conn_a{}, conn_b{};
+  std::array<int, NC> nq{}, nv{};            ///< a joint's configuration and velocity sizes (0 for others)
+  std::array<int, NC> rigid_rotation{};      ///< a rigid edge's rotation: −2 none, −1 any, k about axis k
 };
 
 template <int NC, int NF, int NK>
@@ -166,8 +168,12 @@ struct tree {
   std::array<int, NF> set_parent{};           ///< −1: the set is its link's root
   std::array<int, NF> set_edge{};             ///< rigid component joining set to set_parent
   std::array<int, NF> set_edge_dir{};
-  std::array<int, NC> q_index{};              ///< joint component → index in q (scene order)
+  std::array<int, NC> joint_index{};          ///< joint component → its place among the joints (scene order), −1 for others
+  std::array<int, NC> q_offset{};             ///< joint component → offset of its coordinates in q
+  std::array<int, NC> v_offset{};             ///< joint component → offset of its rates in v
+  int n_joints = 0, n_v = 0;
   std::array<int, NC> link_of_joint{};
+  std::array<int, NF> set_rotation{};         ///< rotation of a set relative to its link: −2 none, −1 any, k about axis k
   int n_tree_sets = 0;
   std::array<int, NF> set_order{};            ///< sets in breadth-first order from the World's
 };
@@ -179,10 +185,17 @@ constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topolo
   for (auto& s : r.set_parent) s = -1;
   for (auto& s : r.set_edge) s = -1;
   for (int c = 0; c < NC; ++c) {
-    r.q_index[c] = -1;
+    r.joint_index[c] = r.q_offset[c] = r.v_offset[c] = -1;
     r.link_of_joint[c] = -1;
-    if (t.kinds[c] == role::joint) r.q_index[c] = r.n_q++;
+    if (t.kinds[c] == role::joint) {
+      r.joint_index[c] = r.n_joints++;
+      r.q_offset[c] = r.n_q;
+      r.v_offset[c] = r.n_v;
+      r.n_q += t.nq[c];
+      r.n_v += t.nv[c];
+    }
   }
+  for (auto& x : r.set_rotation) x = -2;
   if (!topo.ok()) return r;
   std::array<bool, NC> used{};
   // Loops first, by union–find over joints and rigid edges in scene order: the
@@ -235,6 +248,9 @@ constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topolo
         r.set_parent[other] = u;
         r.set_edge[other] = e;
         r.set_edge_dir[other] = dir;
+        // Rotations compose: none with k stays k, k with k stays k, else any.
+        const int a = r.set_rotation[u], b = t.rigid_rotation[e];
+        r.set_rotation[other] = a == -2 ? b : b == -2 ? a : (a == b ? a : -1);
       }
       queue[tail++] = other;
     }

@@ -6,7 +6,8 @@
 //
 // It throws flange::simulation_error, with the time, the state and the reason,
 //   * when the state or the derivative is not finite (a NaN never propagates
-//     into a trajectory),
+//     into a trajectory), or the initial joint coordinates are not valid (a
+//     quaternion far from unit norm: an input mistake, not drift),
 //   * when the budget of derivative evaluations is spent: the usual sign that
 //     an explicit stepper meets a stiff scene (Boost 1.74's max_step_checker
 //     does not stop a controlled stepper in integrate_const; this does),
@@ -18,6 +19,7 @@
 #include <sstream>
 
 #include "flange/errors.hpp"
+#include "flange/simulate/system.hpp"
 
 namespace flange {
 
@@ -56,6 +58,17 @@ struct checked_system {
            x, t);
     if (!detail::finite(x)) [[unlikely]]
       fail("the state is not finite", x, t);
+    // Joint coordinates are checked at the first evaluation only: that is the
+    // user's initial state. Later evaluations include a stepper's trial
+    // stages, which may lie anywhere off the unit sphere before a step is
+    // rejected.
+    if (b->rhs_evals == 1) [[unlikely]] {
+      try {
+        check_coordinates(*scene, x);
+      } catch (const parameter_error& e) {
+        fail(e.what(), x, t);
+      }
+    }
     (*scene)(x, dxdt, t);
     if (!detail::finite(dxdt)) [[unlikely]]
       fail("the derivative is not finite", x, t);

@@ -9,12 +9,12 @@
 // (auto t) or (auto t, const auto& x)); an input written for double is
 // evaluated at the time's value and counts as constant in x.
 #pragma once
-#include "flange/dynamics/newton_euler.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "flange/math/dual.hpp"
+#include "flange/simulate/system.hpp"
 
 namespace flange {
 

@@ -30,6 +30,7 @@
 #endif
 
 #include "flange/dynamics/recover.hpp"
+#include "flange/simulate/system.hpp"
 
 namespace flange {
 

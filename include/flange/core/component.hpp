@@ -19,10 +19,10 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "flange/core/expr.hpp"
+#include "flange/detail/always_false.hpp"
 #include "flange/detail/fixed_string.hpp"
-#include "flange/equations/expr.hpp"
 #include "flange/errors.hpp"
-#include "flange/scene/diagnostics.hpp"
 #include "flange/math/types.hpp"
 
 namespace flange {
@@ -119,6 +119,18 @@ inline Vec3d unit_axis(std::string_view component, std::string_view kind, const 
                                  "] is zero; give a non-zero direction"));
   const Vec3d u = n / big;
   return u / u.norm();
+}
+
+/// A rotation matrix: finite, orthogonal and right-handed (to 1e-9).
+inline void require_rotation(std::string_view component, std::string_view kind, std::string_view what,
+                             const Mat3d& R) {
+  require_finite(component, kind, what, R);
+  const double err = (R * R.transpose() - Mat3d::Identity()).cwiseAbs().maxCoeff();
+  if (err > 1e-9 || R.determinant() < 0)
+    throw parameter_error(concat(kind, " \"", component, "\": ", what, " = [", R.row(0), "; ", R.row(1), "; ",
+                                 R.row(2), "] is not a rotation (|R·R' − 1| = ", err, ", det R = ", R.determinant(),
+                                 "); give an orthogonal, right-handed matrix, or use orientation::axis_angle, "
+                                 "cardan or rpy"));
 }
 
 /// A physical inertia tensor: finite, symmetric, positive semi-definite, and

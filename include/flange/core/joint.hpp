@@ -1,0 +1,146 @@
+// What a joint is: the concept every joint type models, and the pieces of
+// motion and force arithmetic that joints share.
+//
+// A joint J is a component (core/component.hpp) with role::joint and two
+// frames, frame_a and frame_b, that also declares everything about its own
+// motion, the way a Pinocchio joint model does. The algorithms ask it; they
+// never switch on a list of joint kinds.
+//
+//   static constexpr int nq, nv;      sizes of its configuration q and its
+//                                     velocity v (they differ for quaternions)
+//   static constexpr bool reversible; may it be connected frame_b toward the World
+//   neutral()                         its neutral configuration, std::array<double, nq>
+//   motion<T, Dir, NeedRotation>(q)   its motion at q (below); Dir = +1 when
+//                                     frame_a faces the World, −1 otherwise
+//   qdot(q, v, qd)                    q̇ from v
+//   normalize(q)                      keeps q valid (a quaternion's norm); may do nothing
+//   relative_pose(q)                  frame_b's pose in frame_a (for cut forces and output)
+//   write_internals(q, v, set)        its DAE internals (φ, R_rel, …) and their rates
+//   read_state(get, q, v)             q and v back from those internals (the residual's inputs)
+//   planar_normal(), moves_in_plane(K)  what planar arithmetic needs to know
+//
+// and optionally generalized_force(t, x, tau) (inputs and axis laws on its
+// coordinates) and elastic_energy(q). scene/joint_check.hpp turns a missing
+// member into one static_assert naming the joint and the member.
+//
+// The motion object m at q, for the link behind the joint (the child):
+//
+//   m.E              rotates frame_a coordinates into child coordinates
+//   m.p              the child origin in frame_a coordinates
+//   m.w(v)           the relative angular velocity S_ω·v, child coordinates
+//   m.pd(v)          the relative velocity of the child origin S_v·v = ṗ,
+//                    frame_a coordinates
+//   m.w_bias(v)      Ṡ_ω·v, and m.pd_bias(v): Ṡ_v·v (frame_a coordinates):
+//                    the acceleration the joint adds at v̇ = 0
+//   m.project(n, f)  Sᵀ·(n, f) = S_ωᵀ·n + S_vᵀ·Eᵀ·f for a torque n and force f
+//                    on the child at its origin (child coordinates): the
+//                    generalized forces, std::array<T, nv>
+//   m.col<k>()       column k of the motion subspace: {ang, lin} in child
+//                    coordinates (lin = E·S_v·e_k)
+//
+// v is a pointer to the joint's nv rates, or no_rates{} when the rates are
+// known to be zero (their terms are then never generated). Every quantity has
+// a type from math/sparse.hpp, so what a joint's type rules out (a rotation
+// about a coordinate axis, no translation) costs nothing in the algorithms.
+#pragma once
+#include <array>
+#include <concepts>
+#include <type_traits>
+
+#include "flange/core/component.hpp"
+#include "flange/core/frame_kinematics.hpp"
+#include "flange/math/sparse.hpp"
+
+namespace flange {
+
+/// Rates known to be zero.
+struct no_rates {};
+
+template <class V>
+inline constexpr bool is_no_rates = std::is_same_v<std::remove_cvref_t<V>, no_rates>;
+
+/// A typed spatial quantity in two parts: motion {angular, linear} or force
+/// {torque n, force f}, both in one frame at its origin.
+template <class A, class L>
+struct motion_pair {
+  A ang;
+  L lin;
+};
+template <class N, class F>
+struct force_pair {
+  N n;
+  F f;
+};
+template <class A, class L>
+motion_pair(A, L) -> motion_pair<A, L>;
+template <class N, class F>
+force_pair(N, F) -> force_pair<N, F>;
+
+/// frame_b's pose relative to frame_a: R rotates frame_a coordinates into
+/// frame_b's, p is frame_b's origin in frame_a coordinates.
+template <class T>
+struct pose {
+  Mat3<T> R;
+  Vec3<T> p;
+};
+
+/// The flows of a massless two-frame component (a joint or a rigid edge) at
+/// frame_a from those at frame_b, and the reverse: its force and moment
+/// balance, F_a + Rᵀ·F_b = 0 and M_a + Rᵀ·M_b + p × Rᵀ·F_b = 0.
+template <class T>
+wrench<T> flows_a_from_b(const pose<T>& x, const wrench<T>& b) {
+  const Vec3<T> Fa = -(x.R.transpose() * b.f);
+  return {Fa, x.p.cross(Fa) - x.R.transpose() * b.n};
+}
+template <class T>
+wrench<T> flows_b_from_a(const pose<T>& x, const wrench<T>& a) {
+  return {-(x.R * a.f), x.R * (x.p.cross(a.f) - a.n)};
+}
+
+/// The variables a joint writes (write_internals) receive their value and
+/// rate through set(i, value, rate), with value a scalar, a Vec3 or a Mat3.
+
+/// The structural requirements of a joint type, checked one by one so that
+/// a missing member is named (scene/joint_check.hpp).
+namespace joint_requirements {
+template <class J>
+concept sizes = requires {
+  { J::nq } -> std::convertible_to<int>;
+  { J::nv } -> std::convertible_to<int>;
+};
+template <class J>
+concept reversible = requires {
+  { J::reversible } -> std::convertible_to<bool>;
+};
+template <class J>
+concept neutral = requires(const J& j) { j.neutral(); };
+template <class J>
+concept motion = requires(const J& j, const double* q) { j.template motion<double, 1, true>(q); };
+template <class J>
+concept qdot = requires(const J& j, const double* q, const double* v, double* o) { j.qdot(q, v, o); };
+template <class J>
+concept normalize = requires(const J& j, double* q) { j.normalize(q); };
+template <class J>
+concept relative_pose = requires(const J& j, const double* q) {
+  { j.relative_pose(q) } -> std::same_as<flange::pose<double>>;
+};
+template <class J>
+concept planar_info = requires {
+  { J::planar_normal() } -> std::convertible_to<int>;
+  { J::moves_in_plane(0) } -> std::convertible_to<bool>;
+};
+template <class J>
+concept internals_io = requires(const J& j, const double* q, const double* v, double* o) {
+  j.write_internals(q, v, [](int, const auto&, const auto&) {});
+  j.read_state([](int, bool) -> const double* { return nullptr; }, o, o);
+};
+}  // namespace joint_requirements
+
+template <class J>
+concept Joint = Component<J> && J::kind == role::joint && joint_requirements::sizes<J> &&
+                joint_requirements::reversible<J> && joint_requirements::neutral<J> && joint_requirements::motion<J> &&
+                joint_requirements::qdot<J> && joint_requirements::normalize<J> &&
+                joint_requirements::relative_pose<J> && joint_requirements::planar_info<J> &&
+                joint_requirements::internals_io<J>;
+
+}  // namespace flange

@@ -1,0 +1,209 @@
+// What force elements do to the links: the torques n_ext and forces f_ext
+// they exert on each link, in link coordinates about the link origin.
+//
+// A Torque needs the link rotations only: its torque is carried into the
+// links it acts on. Line forces (Spring, Damper, SpringDamper) and world loads
+// (WorldForce, WorldTorque) need the frames' positions and velocities; for
+// scenes with them only, a pose pass (kinematics.hpp) runs first and each
+// element reports the wrench it exerts at its frames (wrenches()). A scene
+// without force elements has none of this.
+#pragma once
+#include <array>
+#include <sstream>
+#include <string>
+
+#include "flange/detail/inline.hpp"
+#include "flange/detail/static_for.hpp"
+#include "flange/core/frame_kinematics.hpp"
+#include "flange/dynamics/kinematics.hpp"
+#include "flange/errors.hpp"
+
+namespace flange::detail {
+
+/// The links a force element's frames sit on, frame by frame (0: the World's).
+/// A one-frame element (WorldForce, WorldTorque) takes its reaction from the World.
+template <class S, int C>
+constexpr auto force_links() {
+  using Comp = typename S::template component_type<C>;
+  std::array<int, Comp::frames.size()> l{};
+  for (int k = 0; k < int(Comp::frames.size()); ++k)
+    l[k] = S::tree.set_link[S::topology.set_of[S::table.frame_base[C] + k]];
+  return l;
+}
+/// Whether a force element acts between different links (or on one link, from the World).
+template <class S, int C>
+constexpr bool force_acts() {
+  constexpr auto l = force_links<S, C>();
+  if constexpr (l.size() == 1) return l[0] != 0;
+  else return l[0] != l[1];
+}
+/// Whether any force element needs the frames' positions and velocities.
+template <class S>
+constexpr bool has_motion_forces() {
+  return []<int... C>(std::integer_sequence<int, C...>) FLANGE_INLINE_LAMBDA {
+    return (false || ... || [] {
+      using Comp = typename S::template component_type<C>;
+      if constexpr (Comp::kind == role::force) return Comp::needs_motion && force_acts<S, C>();
+      else return false;
+    }());
+  }(std::make_integer_sequence<int, S::n_components>{});
+}
+
+/// Which links some element acts on: with a torque, and with a force.
+template <class S>
+struct load_flags {
+  static constexpr int NL = S::tree.n_links;
+  struct table {
+    std::array<bool, NL> torque{}, force{};
+  };
+  static constexpr table value = [] {
+    table t{};
+    [&]<int... C>(std::integer_sequence<int, C...>) FLANGE_INLINE_LAMBDA {
+      (
+          [&]() FLANGE_INLINE_LAMBDA {
+            using Comp = typename S::template component_type<C>;
+            if constexpr (Comp::kind == role::force) {
+              if constexpr (force_acts<S, C>())
+                for (int l : force_links<S, C>()) {
+                  t.torque[l] = true;
+                  if constexpr (Comp::exerts_force) t.force[l] = true;
+                }
+            }
+          }(),
+          ...);
+    }(std::make_integer_sequence<int, S::n_components>{});
+    t.torque[0] = t.force[0] = false;  // the World takes what it is given
+    return t;
+  }();
+};
+
+template <class S, class T>
+using link_loads = std::array<Vec3<T>, S::tree.n_links>;
+
+/// A vector in link L's coordinates from world coordinates, and back, through
+/// the chain of link rotations (motions: a tuple from link_motions).
+template <int L, class S, class M, class V>
+auto world_to_link(const M& motions, const V& v) {
+  if constexpr (L == 0) return v;
+  else return rot(std::get<L - 1>(motions).E(), world_to_link<link_info<S, L>::parent, S>(motions, v));
+}
+template <int L, class S, class M, class V>
+auto link_to_world(const M& motions, const V& v) {
+  if constexpr (L == 0) return v;
+  else return link_to_world<link_info<S, L>::parent, S>(motions, rot_t(std::get<L - 1>(motions).E(), v));
+}
+
+/// The frame of component C's k-th frame, from its link's world pose.
+template <class S, int C, int K, class T>
+FLANGE_INLINE frame_kinematics<T> frame_from_link(const S& scene, const link_pose<T>& L) {
+  constexpr int set = S::topology.set_of[S::table.frame_base[C] + K];
+  constexpr bool on_world = force_links<S, C>()[K] == 0;
+  constexpr bool turned = S::tree.set_rotation[set] != -2;  // a FixedRotation on the way from the link origin
+  const Vec3<T> p = scene.model().set_offset[set].template cast<T>();
+  frame_kinematics<T> f;
+  f.a = f.wd = Vec3<T>::Zero();
+  if constexpr (on_world) {  // a frame on the World: at rest
+    if constexpr (turned) f.R = scene.model().set_rotation[set].template cast<T>();
+    else f.R.setIdentity();
+    f.w.setZero();
+    f.r = p;
+    f.v.setZero();
+  } else {
+    if constexpr (turned) {
+      const Mat3<T> Rs = scene.model().set_rotation[set].template cast<T>();
+      f.R.noalias() = Rs * L.R;
+      f.w.noalias() = Rs * L.w;
+    } else {
+      f.R = L.R;
+      f.w = L.w;
+    }
+    f.r = L.r + L.R.transpose() * p;
+    f.v = L.v + L.R.transpose() * L.w.cross(p);
+  }
+  return f;
+}
+
+/// The loads of the scene's force elements on each link. Only the links
+/// load_flags mark are written. motions: the algorithm's (algebra A) link
+/// motions; pose_motions: spatial motions with rotations, used when a pose
+/// pass is needed (they may be the same tuple).
+template <class A, class S, class T, class M, class PM>
+FLANGE_INLINE void gather_external(const S& scene, const T& t, const joint_state<T>& x, const M& motions, const PM& pose_motions,
+                     link_loads<S, T>& n_ext, link_loads<S, T>& f_ext) {
+  constexpr auto F = load_flags<S>::value;
+  for (int L = 0; L < S::tree.n_links; ++L) {
+    if (F.torque[L]) n_ext[L].setZero();
+    if (F.force[L]) f_ext[L].setZero();
+  }
+  if constexpr (has_motion_forces<S>()) {
+    const auto lk = link_poses<S>(pose_motions, x.qd_);
+    [&]<int... C>(std::integer_sequence<int, C...>) FLANGE_INLINE_LAMBDA {
+      (
+          [&]() FLANGE_INLINE_LAMBDA {
+            using Comp = typename S::template component_type<C>;
+            if constexpr (Comp::kind == role::force && force_acts<S, C>()) {
+              constexpr int nf = int(Comp::frames.size());
+              constexpr auto links = force_links<S, C>();
+              std::array<frame_kinematics<T>, nf> fk;
+              std::array<Vec3<T>, nf> p;
+              static_for<nf>([&](auto k) FLANGE_INLINE_LAMBDA {
+                constexpr int K = decltype(k)::value;
+                fk[K] = frame_from_link<S, C, K>(scene, lk[links[K]]);
+                p[K] = scene.model().set_offset[S::topology.set_of[S::table.frame_base[C] + K]].template cast<T>();
+              });
+              std::array<wrench<T>, nf> on;
+              scene.template component<C>().wrenches(t, x, fk.data(), on.data());
+              for (int k = 0; k < nf; ++k) {
+                const int l = links[k];
+                if (l == 0) continue;
+                if constexpr (Comp::exerts_force) {
+                  const Vec3<T> f = lk[l].R * on[k].f;
+                  f_ext[l] += f;
+                  n_ext[l] += p[k].cross(f);
+                }
+                if constexpr (Comp::exerts_torque) n_ext[l] += lk[l].R * on[k].n;
+              }
+            }
+          }(),
+          ...);
+    }(std::make_integer_sequence<int, S::n_components>{});
+  } else {
+    (void)pose_motions;
+    [&]<int... C>(std::integer_sequence<int, C...>) FLANGE_INLINE_LAMBDA {
+      (
+          [&]() FLANGE_INLINE_LAMBDA {
+            using Comp = typename S::template component_type<C>;
+            if constexpr (Comp::kind == role::force && force_acts<S, C>()) {
+              constexpr auto links = force_links<S, C>();
+              constexpr int la = links[0], lb = links[1];
+              // A pure torque: M_ext (frame_a coordinates) acts on frame_b's
+              // side, −M_ext on frame_a's; a frame turned against its link
+              // (FixedRotation) first turns it into link coordinates.
+              constexpr int set_a = S::topology.set_of[S::table.frame_base[C]];
+              const auto Ra = set_rotation<A, T, S, set_a>(scene);
+              const auto Mt = rot_t(Ra, angular<A, T>(scene.template component<C>().torque(t, x)));
+              if constexpr (lb != 0) {
+                if constexpr (la == 0) n_ext[lb] += world_to_link<lb, S>(motions, Mt).dense();
+                else n_ext[lb] += world_to_link<lb, S>(motions, link_to_world<la, S>(motions, Mt)).dense();
+              }
+              if constexpr (la != 0) n_ext[la] -= Mt.dense();
+            }
+          }(),
+          ...);
+    }(std::make_integer_sequence<int, S::n_components>{});
+  }
+}
+
+template <class T>
+[[nodiscard]] std::string describe_state(const T* q, int nq, const T* v, int nv) {
+  std::ostringstream os;
+  os.precision(17);
+  os << "q = [";
+  for (int i = 0; i < nq; ++i) os << (i ? ", " : "") << static_cast<long double>(q[i]);
+  os << "], v = [";
+  for (int i = 0; i < nv; ++i) os << (i ? ", " : "") << static_cast<long double>(v[i]);
+  os << "]";
+  return os.str();
+}
+
+}  // namespace flange::detail

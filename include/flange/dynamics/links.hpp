@@ -1,0 +1,206 @@
+// The links of a scene's kinematic tree as the recursive algorithms see them:
+// compile-time facts about each link (its joint, parent, children, where its
+// coordinates sit in the state), the loops over links that the compiler
+// unrolls, and each link's motion at q: its joint's motion (core/joint.hpp)
+// composed with the constant pose of the frame the joint hangs on.
+//
+// Link 0 is the World's rigid cluster; link L ≥ 1 is the body behind joint L,
+// with its origin at the joint's child-side frame. Links are numbered
+// breadth-first, so a parent precedes its children.
+#pragma once
+#include <array>
+
+#include "flange/detail/inline.hpp"
+#include <tuple>
+#include <utility>
+
+#include "flange/core/joint.hpp"
+#include "flange/dynamics/algebra.hpp"
+#include "flange/dynamics/model.hpp"
+#include "flange/math/sparse.hpp"
+
+namespace flange::detail {
+
+template <class S, int L>
+struct link_info {
+  static constexpr auto& tree = S::tree;
+  static constexpr int joint = tree.link_joint[L];
+  using joint_type = typename S::template component_type<joint>;
+  static constexpr int dir = tree.link_dir[L] > 0 ? 1 : -1;
+  static constexpr int parent = tree.link_parent[L];
+  static constexpr int parent_set = tree.link_parent_set[L];
+  static constexpr int q = tree.q_offset[joint];  ///< offset of the joint's coordinates in q
+  static constexpr int v = tree.v_offset[joint];  ///< offset of its rates in v (and of its rows in M)
+  static constexpr int nq = joint_type::nq, nv = joint_type::nv;
+  /// Whether the joint hangs away from its parent link's origin (behind a
+  /// rigid edge); if not, that offset is known to be zero.
+  static constexpr bool has_offset = tree.set_parent[parent_set] >= 0;
+  /// The rotation of the frame it hangs on relative to the parent link: −2
+  /// none, k about coordinate axis k, −1 any.
+  static constexpr int set_rotation = tree.set_rotation[parent_set];
+};
+
+/// The children of link L (links whose parent is L), in order.
+template <class S, int L>
+constexpr auto children() {
+  constexpr int NL = S::tree.n_links;
+  constexpr int n = [] {
+    int k = 0;
+    for (int c = 1; c < NL; ++c) k += S::tree.link_parent[c] == L;
+    return k;
+  }();
+  std::array<int, n> r{};
+  int k = 0;
+  for (int c = 1; c < NL; ++c)
+    if (S::tree.link_parent[c] == L) r[k++] = c;
+  return r;
+}
+
+/// f(integral_constant<L>) for L = 1 … n_links−1, parents first.
+template <class S, class F>
+FLANGE_INLINE void for_links(F&& f) {
+  [&]<int... L>(std::integer_sequence<int, L...>) FLANGE_INLINE_LAMBDA {
+    (f(std::integral_constant<int, L + 1>{}), ...);
+  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+}
+/// The same, children first.
+template <class S, class F>
+FLANGE_INLINE void for_links_reverse(F&& f) {
+  [&]<int... L>(std::integer_sequence<int, L...>) FLANGE_INLINE_LAMBDA {
+    (f(std::integral_constant<int, S::tree.n_links - 1 - L>{}), ...);
+  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+}
+/// f(integral_constant<C>) for each child C of link L.
+template <class S, int L, class F>
+FLANGE_INLINE void for_children(F&& f) {
+  constexpr auto c = children<S, L>();
+  [&]<std::size_t... I>(std::index_sequence<I...>) FLANGE_INLINE_LAMBDA {
+    (f(std::integral_constant<int, c[I]>{}), ...);
+  }(std::make_index_sequence<c.size()>{});
+}
+
+/// The constant pose of a connection set relative to its link: the rotation
+/// (identity, about a coordinate axis, or any) and the offset (zero for the
+/// link's root set), typed, in algebra A.
+template <class A, class T, class S, int Set>
+FLANGE_INLINE auto set_rotation(const S& scene) {
+  constexpr int kind = S::tree.set_rotation[Set];
+  if constexpr (kind == -2) {
+    return identity_rotation{};
+  } else if constexpr (kind >= 0) {
+    constexpr int j = (kind + 1) % 3, k = (kind + 2) % 3;
+    const Mat3d& R = scene.model().set_rotation[Set];
+    return coordinate_rotation<T, kind>{T(R(j, j)), T(R(j, k))};
+  } else {
+    return Mat3<T>(scene.model().set_rotation[Set].template cast<T>());
+  }
+}
+template <class A, class T, class S, int Set>
+FLANGE_INLINE auto set_offset(const S& scene) {
+  if constexpr (S::tree.set_parent[Set] < 0) return zero_vec<T>{};
+  else return linear<A, T>(scene.model().set_offset[Set]);
+}
+
+/// A link's motion: its joint's motion jm composed with the pose (Es, ps) of
+/// the frame the joint hangs on, so that E() rotates parent-link coordinates
+/// into child coordinates and p is the child origin in parent-link
+/// coordinates. Where the frame is not turned (no FixedRotation on the way),
+/// E() is the joint's own rotation, not a copy.
+template <class JM, class ES, class P>
+struct link_motion {
+  using set_rotation_type = ES;
+  JM jm;
+  ES Es;
+  std::conditional_t<is_identity_rotation<ES>, identity_rotation,
+                     decltype(compose(std::declval<const JM&>().E, std::declval<const ES&>()))>
+      E_;
+  P p;
+  FLANGE_INLINE const auto& E() const {
+    if constexpr (is_identity_rotation<ES>) return jm.E;
+    else return E_;
+  }
+  template <class V>
+  FLANGE_INLINE auto w(const V& v) const {
+    return jm.w(v);
+  }
+  template <class V>
+  FLANGE_INLINE auto pd(const V& v) const {
+    return rot_t(Es, jm.pd(v));
+  }
+  template <class V>
+  FLANGE_INLINE auto w_bias(const V& v) const {
+    return jm.w_bias(v);
+  }
+  template <class V>
+  FLANGE_INLINE auto pd_bias(const V& v) const {
+    return rot_t(Es, jm.pd_bias(v));
+  }
+  template <class N, class F>
+  FLANGE_INLINE auto project(const N& n, const F& f) const {
+    return jm.project(n, f);
+  }
+  template <int K>
+  FLANGE_INLINE auto col() const {
+    return jm.template col<K>();
+  }
+};
+
+template <class A, class T, int L, bool NeedRotation, class S>
+FLANGE_INLINE auto make_link_motion(const S& scene, const T* q) {
+  using LI = link_info<S, L>;
+  const auto& joint = scene.template component<LI::joint>();
+  auto jm = joint.template motion<T, LI::dir, NeedRotation>(q + LI::q);
+  auto Es = set_rotation<A, T, S, LI::parent_set>(scene);
+  auto p = set_offset<A, T, S, LI::parent_set>(scene) + rot_t(Es, jm.p);
+  using M = link_motion<decltype(jm), decltype(Es), decltype(p)>;
+  if constexpr (is_identity_rotation<decltype(Es)>) {
+    return M{std::move(jm), Es, {}, p};
+  } else {
+    auto E = compose(jm.E, Es);
+    return M{std::move(jm), Es, E, p};
+  }
+}
+
+/// The same links' motions with the set offsets in 3-D: for the pose pass of
+/// a planar scene, whose own motions hold in-plane offsets only. The joints'
+/// motions (and their sines and cosines) are reused, not recomputed.
+template <class T, class S, class Motions>
+FLANGE_INLINE auto spatial_offsets(const S& scene, const Motions& motions) {
+  return [&]<int... L>(std::integer_sequence<int, L...>) FLANGE_INLINE_LAMBDA {
+    return std::make_tuple([&]() FLANGE_INLINE_LAMBDA {
+      using LI = link_info<S, L + 1>;
+      const auto& m = std::get<L>(motions);
+      auto p = set_offset<spatial_algebra, T, S, LI::parent_set>(scene) + rot_t(m.Es, m.jm.p);
+      return link_motion<std::remove_cvref_t<decltype(m.jm)>, std::remove_cvref_t<decltype(m.Es)>, decltype(p)>{
+          m.jm, m.Es, m.E_, p};
+    }()...);
+  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+}
+
+/// Whether link L's rotation is applied to anything that is not zero: always
+/// behind another link (its subtree's wrench and inertia are carried up) or
+/// with a position pass; on the World only when gravity or the joint's own
+/// bias acceleration reaches it. Otherwise its sine and cosine are not even
+/// computed (a gravity-free arm does no trigonometry).
+template <class S, int L, bool HasPositionPass>
+constexpr bool need_rotation() {
+  using LI = link_info<S, L>;
+  if constexpr (LI::parent != 0 || HasPositionPass || S::has_gravity) {
+    return true;
+  } else {
+    using JM = decltype(std::declval<const typename LI::joint_type&>().template motion<double, LI::dir, true>(
+        static_cast<const double*>(nullptr)));
+    using Bias = decltype(std::declval<const JM&>().pd_bias(static_cast<const double*>(nullptr)));
+    return !is_zero_vec<Bias>;
+  }
+}
+
+/// The motions of all links at q, as a tuple (link L at L − 1).
+template <class A, class T, bool HasPositionPass, class S>
+FLANGE_INLINE auto link_motions(const S& scene, const T* q) {
+  return [&]<int... L>(std::integer_sequence<int, L...>) FLANGE_INLINE_LAMBDA {
+    return std::make_tuple(make_link_motion<A, T, L + 1, need_rotation<S, L + 1, HasPositionPass>()>(scene, q)...);
+  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+}
+
+}  // namespace flange::detail
