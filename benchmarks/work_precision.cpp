@@ -1,4 +1,4 @@
-// Work-precision study: every Boost.Odeint stepper that applies, on five
+// Work-precision study: every Boost.Odeint stepper that applies, on seven
 // flange scenes, error at the final time against cost.
 //
 //   build/benchmarks/work_precision [--quick] [--csv FILE] [--scene NAME]
@@ -23,6 +23,7 @@
 
 #include <flange/flange.hpp>
 #include <flange/models/chain.hpp>
+#include <flange/models/legged.hpp>
 #include <flange/models/paper.hpp>
 #include <flange/simulate/rosenbrock4.hpp>
 #include <flange/study/work_precision.hpp>
@@ -222,7 +223,7 @@ int main(int argc, char** argv) {
       o.reference_out = argv[++i];
     else {
       std::cerr << "usage: work_precision [--quick] [--csv FILE] [--scene NAME] [--reference-out FILE]\n"
-                   "scenes: robot_arm gantry_crane double_pendulum spatial_chain4 stiff_joint\n";
+                   "scenes: robot_arm gantry_crane double_pendulum spatial_chain4 stiff_joint free_body legged\n";
       return 2;
     }
   }
@@ -273,6 +274,28 @@ int main(int argc, char** argv) {
           connect<"upper.frame_b", "b1.frame_a">, connect<"upper.frame_b", "elbow.frame_a">,
           connect<"elbow.frame_b", "lower.frame_a">, connect<"lower.frame_b", "b2.frame_a">);
       study_scene("stiff_joint", stiff, {0.5, 0.3, 0.0, 0.0}, 2.0, false, o, points, refs);
+    }
+    {
+      // An asymmetric body thrown under gravity on a FreeMotion, its centre of
+      // mass off its frame, spinning near its intermediate axis (it flips).
+      const auto free_body =
+          scene(World<"world">{}, FreeMotion<"fly">{},
+                Body<"body", cm::offset>({.m = 2.0, .J = Vec3d(0.1, 0.2, 0.3).asDiagonal(), .r_cm = {0.1, 0, 0}}),
+                connect<"world.frame_b", "fly.frame_a">, connect<"fly.frame_b", "body.frame_a">);
+      auto x0 = neutral_state(free_body);
+      set_joint<"fly">(free_body, x0,
+                       {.r = Vec3d::Zero(), .v = Vec3d(1, 2, 0), .R = orientation{}, .w = Vec3d(0.3, 4, 0.2)});
+      study_scene("free_body", free_body, x0, 5.0, false, o, points, refs);
+    }
+    {
+      // A floating-base robot falling freely: a trunk on a FreeMotion with four
+      // legs of three revolute joints (models/legged.hpp), every coordinate and
+      // rate moved off neutral.
+      const auto legged = models::legged<4, 3>();
+      auto x0 = neutral_state(legged);
+      for (std::size_t i = 0; i < x0.size(); ++i) x0[i] += 0.3 * std::sin(1.3 * i + 0.4);
+      normalize(legged, x0);
+      study_scene("legged", legged, x0, 2.0, false, o, points, refs);
     }
   }
 #ifdef FLANGE_PEER_MUJOCO

@@ -1,4 +1,5 @@
-// MuJoCo on the paper's robot arm and gantry crane, measured the way
+// MuJoCo on the paper's robot arm and gantry crane, a free body and a
+// floating-base robot with four legs, measured the way
 // benchmarks/work_precision.cpp measures flange: the scaled error at T against
 // flange's long-double reference, and the median wall time per simulated
 // second, over a sweep of time steps for each of MuJoCo's integrators.
@@ -11,6 +12,11 @@
 // and the cart force are actuators whose controls are set in mjcb_control, so
 // an input would be seen at every RK4 stage; both inputs are 0 here, as in
 // flange's study.
+//
+// A free joint's state is flange's FreeMotion's, but for the quaternion's
+// order: MuJoCo's qpos holds (w, x, y, z), flange's (x, y, z, w); both take
+// the linear velocity in the world and ω in body axes. The states are mapped
+// on the way in and out.
 //
 // One difference remains: MuJoCo refuses a moving body without rotational
 // inertia ("mass and inertia of moving bodies must be larger than mjMINVAL"),
@@ -59,6 +65,67 @@ std::string crane_xml() {
   return x.str();
 }
 
+std::string free_body_xml() {
+  std::ostringstream x;
+  x << "<mujoco model='free_body'><compiler angle='radian'/>"
+    << "<option gravity='0 " << -peer::g << " 0'><flag contact='disable' constraint='disable'/></option>"
+    << "<worldbody><body name='body'><freejoint/>"
+    << "<inertial pos='" << peer::free_cm << " 0 0' mass='" << peer::free_m << "' diaginertia='" << peer::free_J[0]
+    << ' ' << peer::free_J[1] << ' ' << peer::free_J[2] << "'/>"
+    << "</body></worldbody></mujoco>";
+  return x.str();
+}
+
+std::string legged_xml() {
+  std::ostringstream x;
+  x << "<mujoco model='legged'><compiler angle='radian'/>"
+    << "<option gravity='0 " << -peer::g << " 0'><flag contact='disable' constraint='disable'/></option>"
+    << "<worldbody><body name='trunk'><freejoint/>"
+    << "<inertial pos='0 0 0' mass='" << peer::legged_trunk_m << "' diaginertia='" << peer::legged_trunk_J[0] << ' '
+    << peer::legged_trunk_J[1] << ' ' << peer::legged_trunk_J[2] << "'/>";
+  for (int k = 0; k < 4; ++k) {
+    const double sx = (k % 2 ? -1 : 1) * peer::legged_hip_x, sz = (k / 2 ? -1 : 1) * peer::legged_hip_z;
+    for (int j = 0; j < 3; ++j) {
+      x << "<body pos='";
+      if (j == 0) x << sx << " 0 " << sz;
+      else x << "0 " << -peer::legged_link_L << " 0";
+      x << "'><joint type='hinge' axis='" << (j == 0 ? "0 1 0" : "1 0 0")
+        << "' armature='0' damping='0' limited='false'/>"
+        << "<inertial pos='0 " << -0.5 * peer::legged_link_L << " 0' mass='" << peer::legged_link_m
+        << "' diaginertia='" << peer::legged_link_J[0] << ' ' << peer::legged_link_J[1] << ' ' << peer::legged_link_J[2]
+        << "'/>";
+    }
+    x << "</body></body></body>";
+  }
+  x << "</body></worldbody></mujoco>";
+  return x.str();
+}
+
+/// flange's state (q, v) to MuJoCo's qpos, qvel and back: the same but for a
+/// free joint's quaternion, (x, y, z, w) in flange and (w, x, y, z) in MuJoCo.
+void to_mujoco(const mjModel* m, const std::vector<double>& x, mjData* d) {
+  for (int i = 0; i < m->nq; ++i) d->qpos[i] = x[i];
+  for (int i = 0; i < m->nv; ++i) d->qvel[i] = x[m->nq + i];
+  for (int j = 0; j < m->njnt; ++j)
+    if (m->jnt_type[j] == mjJNT_FREE) {
+      const int a = m->jnt_qposadr[j] + 3;
+      d->qpos[a] = x[a + 3];
+      for (int c = 0; c < 3; ++c) d->qpos[a + 1 + c] = x[a + c];
+    }
+}
+std::vector<double> from_mujoco(const mjModel* m, const mjData* d) {
+  std::vector<double> x(m->nq + m->nv);
+  for (int i = 0; i < m->nq; ++i) x[i] = d->qpos[i];
+  for (int i = 0; i < m->nv; ++i) x[m->nq + i] = d->qvel[i];
+  for (int j = 0; j < m->njnt; ++j)
+    if (m->jnt_type[j] == mjJNT_FREE) {
+      const int a = m->jnt_qposadr[j] + 3;
+      x[a + 3] = d->qpos[a];
+      for (int c = 0; c < 3; ++c) x[a + c] = d->qpos[a + 1 + c];
+    }
+  return x;
+}
+
 mjModel* load(const std::string& xml) {
   auto vfs = std::make_unique<mjVFS>();  // large: keep it off the stack
   mj_defaultVFS(vfs.get());
@@ -80,7 +147,13 @@ void study(const std::string& name, const std::string& xml, const peer::referenc
   mjModel* m = load(xml);
   if (!m) return;
   mjData* d = mj_makeData(m);
-  const int nq = m->nq;
+  if (static_cast<std::size_t>(m->nq + m->nv) != ref.x0.size()) {
+    std::printf("mujoco: %s has %d + %d state variables, flange's reference %zu\n", name.c_str(), m->nq, m->nv,
+                ref.x0.size());
+    mj_deleteData(d);
+    mj_deleteModel(m);
+    return;
+  }
   struct integrator {
     const char* name;
     int kind, evals_per_step;
@@ -97,19 +170,11 @@ void study(const std::string& name, const std::string& xml, const peer::referenc
       m->opt.timestep = ref.T / n;
       auto run = [&] {
         mj_resetData(m, d);
-        for (int i = 0; i < nq; ++i) {
-          d->qpos[i] = ref.x0[i];
-          d->qvel[i] = ref.x0[nq + i];
-        }
+        to_mujoco(m, ref.x0, d);
         for (long k = 0; k < n; ++k) mj_step(m, d);
       };
       run();
-      std::vector<double> x(2 * nq);
-      for (int i = 0; i < nq; ++i) {
-        x[i] = d->qpos[i];
-        x[nq + i] = d->qvel[i];
-      }
-      const double e = peer::scaled_error(x, ref.x);
+      const double e = peer::scaled_error(from_mujoco(m, d), ref.x);
       if (!(e <= 1)) continue;  // diverged: left out, as flange's runs are
       const double sec = peer::median_seconds(run, quick ? 3 : 5, quick ? 5e-4 : 3e-3) / ref.T;
       peer::print_row(name, in.name, "dt", ref.T / n, e, sec, n * in.evals_per_step, n, 0);
@@ -130,8 +195,12 @@ int main(int argc, char** argv) {
   std::printf("MuJoCo %s (Debian's libmujoco): RK4, semi-implicit and implicit Euler over a time-step sweep\n",
               mj_versionString());
   mjcb_control = control;
-  const auto refs = peer::read_references(o.reference, {{"robot_arm", 2}, {"gantry_crane", 4}});
-  for (const auto& [name, xml] : {std::pair{std::string("robot_arm"), arm_xml()}, {"gantry_crane", crane_xml()}}) {
+  const auto refs = peer::read_references(o.reference,
+                                          {{"robot_arm", 2}, {"gantry_crane", 4}, {"free_body", 13}, {"legged", 37}});
+  for (const auto& [name, xml] : {std::pair{std::string("robot_arm"), arm_xml()},
+                                  {"gantry_crane", crane_xml()},
+                                  {"free_body", free_body_xml()},
+                                  {"legged", legged_xml()}}) {
     if (!o.scene.empty() && o.scene != name) continue;
     const auto r = refs.find(name);
     if (r == refs.end()) {

@@ -9,6 +9,15 @@
 //                 x = (φ, φ̇), φ = 0 with the arm horizontal along +x
 //   gantry_crane  cart M = 1 kg (J = 0.1·1), load m = 0.5 kg (a point mass) on a
 //                 d = 1 m rope, no force; x = (s, φ, ṡ, φ̇)
+//   free_body     a body on a FreeMotion: m = 2 kg, centre of mass at (0.1, 0, 0)
+//                 in its frame, J = diag(0.1, 0.2, 0.3) kg m² about it, gravity;
+//                 x = (r, Qx, Qy, Qz, Qw, v, ω): r and v the frame origin's
+//                 position and velocity in the world, ω in body axes
+//   legged        models::legged<4, 3>(): a trunk (10 kg, J = diag(0.1, 0.3,
+//                 0.25)) on a FreeMotion, four legs at (±0.3, 0, ±0.15), each of
+//                 three 0.25 m links (0.6 kg at mid-link, J = diag(0.004,
+//                 0.0005, 0.004)), the hip about y, knee and ankle about x;
+//                 x = (trunk as free_body, 12 joint angles, 12 joint rates)
 #pragma once
 #include <algorithm>
 #include <chrono>
@@ -25,6 +34,10 @@ namespace peer {
 
 inline const double arm_m = 1.0, arm_d = 0.5, arm_Jx = 0.01, arm_Jz = 0.02, g = 9.81;
 inline const double crane_M = 1.0, crane_m = 0.5, crane_d = 1.0;
+inline const double free_m = 2.0, free_cm = 0.1, free_J[3] = {0.1, 0.2, 0.3};
+inline const double legged_trunk_m = 10.0, legged_trunk_J[3] = {0.1, 0.3, 0.25}, legged_link_m = 0.6,
+                    legged_link_L = 0.25, legged_link_J[3] = {0.004, 0.0005, 0.004}, legged_hip_x = 0.3,
+                    legged_hip_z = 0.15;
 
 struct reference {
   double T = 0;
