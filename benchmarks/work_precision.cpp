@@ -50,7 +50,7 @@ void study_scene(const std::string& name, const S& s, typename S::state_type x0,
   if (!o.scene.empty() && o.scene != name) return;
   using X = typename S::state_type;
   const auto ref = study::long_double_reference(s, x0, T);
-  std::cout << "\n## " << name << ": " << S::n_q << " degrees of freedom, T = " << T << " s\n"
+  std::cout << "\n## " << name << ": " << S::n_v << " degrees of freedom, T = " << T << " s\n"
             << "reference: fehlberg78 in long double at 1e-18 (" << ref.rhs_evals
             << " evaluations for two solves), its error estimate " << std::setprecision(2) << ref.error_estimate
             << "\n";
@@ -173,7 +173,7 @@ void study_scene(const std::string& name, const S& s, typename S::state_type x0,
   }
   if (!symplectic)
     std::cout << "symplectic steppers: not applicable, the Hamiltonian is not separable "
-              << (S::n_q > 1 ? "(the mass matrix depends on q)" : "(velocity-dependent forces)") << "\n";
+              << (S::n_v > 1 ? "(the mass matrix depends on q)" : "(velocity-dependent forces)") << "\n";
 }
 
 /// Runs a peer simulator's program on the references and reads its CSV rows.
