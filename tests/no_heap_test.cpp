@@ -1,5 +1,6 @@
 // No heap allocation in the derivative, the residual, recovery, the Jacobian,
-// the checked system, or any stepping loop once its stepper exists.
+// the checked system, or any stepping loop once its stepper exists; and none
+// per case in an ensemble.
 //
 // The counter sees every way to the heap:
 //   * malloc, calloc, realloc, aligned_alloc and posix_memalign, wrapped at
@@ -15,6 +16,7 @@
 
 #include <catch2/catch.hpp>
 #include <flange/dynamics/articulated_body.hpp>
+#include <flange/ensemble/ensemble.hpp>
 #include <flange/forces/line_force.hpp>
 #include <flange/forces/world_force.hpp>
 #include <flange/simulate/checked.hpp>
@@ -258,4 +260,35 @@ TEST_CASE("every stepping loop allocates nothing once its stepper exists") {
   CHECK(count_allocations([&] {
           for (int i = 0; i < 10; ++i) bs_dense.do_step(crane);
         }) == 2 * 10);
+}
+
+TEST_CASE("an ensemble allocates per run, never per case: 10 and 200 cases make the same allocations") {
+  auto setup = [](const std::array<double, 1>& c) {
+    auto crane = scene(World<"world">({.g = {0, -9.81, 0}}), Prismatic<"rail", axis::x>({.f = 0.0}),
+                       Body<"cart">({.m = 1.0, .J = Mat3d::Identity() * 0.1}), Revolute<"pivot", axis::z>{},
+                       FixedTranslation<"rope">({.d = {1.0, 0, 0}}), PointMass<"load">({.m = c[0]}),
+                       connect<"world.frame_b", "rail.frame_a">, connect<"rail.frame_b", "cart.frame_a">,
+                       connect<"rail.frame_b", "pivot.frame_a">, connect<"pivot.frame_b", "rope.frame_a">,
+                       connect<"rope.frame_b", "load.frame_a">);
+    return std::pair{crane, decltype(crane)::state_type{0.0, -1.0, 0.0, 0.0}};
+  };
+  namespace en = flange::ensemble;
+  auto study = en::make(setup, en::integration{.t1 = 0.5},
+                        en::maximum("swing", [](const auto&, double, const auto& x) { return std::abs(x[1]); }),
+                        en::crossing("back", [](const auto&, double, const auto& x) { return x[3]; }, 0),
+                        en::settling_time("settle", [](const auto&, double, const auto& x) { return x[3]; }, 0.1),
+                        en::at_times<2>("s", [](const auto&, double, const auto& x) { return x[0]; }, {0.1, 0.4}),
+                        en::final_state{});
+  const auto few = en::grid<1>({"m"}, {en::linspace(0.1, 2, 10)});
+  const auto many = en::grid<1>({"m"}, {en::linspace(0.1, 2, 200)});
+  const en::run_options opt{.block = 16, .progress_line = en::run_options::show::never};
+  std::vector<decltype(study)::outcome_type<1>> sink_rows;
+  sink_rows.reserve(16);
+  auto sink = [&](auto b, auto e) { sink_rows.assign(b, e); };
+  // stream() with a sink that keeps one block: what a very large sweep does.
+  const long a10 = count_allocations([&] { study.stream(few, en::serial{}, sink, opt); });
+  const long a200 = count_allocations([&] { study.stream(many, en::serial{}, sink, opt); });
+  INFO("allocations for 10 cases: " << a10 << ", for 200 cases: " << a200);
+  CHECK(a10 == a200);
+  CHECK(a10 <= 2);  // the block's rows, once
 }

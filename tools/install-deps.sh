@@ -5,14 +5,16 @@
 #                                    valgrind (the memcheck test)
 #   tools/install-deps.sh --plots    also gnuplot, for docs/*.png
 #   tools/install-deps.sh --peers    also MuJoCo and Simbody, the work-precision study's peers
-# (--plots and --peers may be given together.)
+#   tools/install-deps.sh --ensembles  also oneTBB, Boost.MPI and Open MPI, for parallel ensembles
+# (the options may be given together.)
 set -euo pipefail
 packages=(g++ cmake make libeigen3-dev libboost-dev catch2 libbenchmark-dev valgrind)
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(gnuplot-nox) ;;
     --peers) packages+=(libmujoco-dev libsimbody-dev) ;;
-    *) echo "install-deps: unknown option $arg (use --plots, --peers)" >&2; exit 2 ;;
+    --ensembles) packages+=(libtbb-dev libboost-mpi-dev openmpi-bin) ;;
+    *) echo "install-deps: unknown option $arg (use --plots, --peers, --ensembles)" >&2; exit 2 ;;
   esac
 done
 missing=()
