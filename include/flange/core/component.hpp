@@ -16,6 +16,7 @@
 #include <cmath>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 
 #include <Eigen/Eigenvalues>
 
@@ -52,6 +53,10 @@ concept Component = requires {
 
 // ------------------------------------------------------------ inputs
 
+/// The input type of a joint without a drive: it has no input, and its
+/// dynamics have no input arithmetic at all.
+struct undriven {};
+
 /// The minimal state (joint coordinates q and rates q̇, in the order the joints
 /// appear in the scene) as an input callable sees it.
 template <class T>
@@ -62,6 +67,41 @@ struct joint_state {
   [[nodiscard]] T q(int i) const { return q_[i]; }
   [[nodiscard]] T qd(int i) const { return qd_[i]; }
 };
+
+/// The parameter slot of an input whose type is a constant (a number or a
+/// 3-vector, the default): it takes the value, or anything convertible to it,
+/// and refuses a callable with one static_assert (Refuse<F>) that says how to
+/// give the callable's type, instead of a page of conversion errors.
+template <class V, template <class> class Refuse>
+struct constant_input_slot {
+  V value{};
+  constant_input_slot() = default;
+  template <class U>
+    requires std::is_convertible_v<U&&, V>
+  constant_input_slot(U&& u) : value(std::forward<U>(u)) {}  // NOLINT: implicit, as the value itself would be
+  constant_input_slot(double x, double y, double z)
+    requires std::is_same_v<V, Vec3d>
+      : value(x, y, z) {}
+  template <class U>
+    requires(!std::is_convertible_v<U &&, V> && std::is_class_v<std::remove_cvref_t<U>>)
+  constant_input_slot(U&&) {  // NOLINT
+    (void)sizeof(Refuse<std::remove_cvref_t<U>>);
+  }
+};
+/// The slot type for an input of type In: a constant_input_slot for numbers
+/// and 3-vectors, the type itself for callables.
+template <class In, template <class> class Refuse>
+using input_slot = std::conditional_t<std::is_same_v<In, double> || std::is_same_v<In, Vec3d>,
+                                      constant_input_slot<In, Refuse>, In>;
+/// The input held in a slot.
+template <class V, template <class> class R>
+V&& take_input(constant_input_slot<V, R>&& s) {
+  return std::move(s.value);
+}
+template <class In>
+In&& take_input(In&& in) {
+  return std::move(in);
+}
 
 /// Evaluates an input: a constant, a callable of time, or a callable of time
 /// and joint state. Resolved at compile time; no virtual call, no std::function.

@@ -15,6 +15,15 @@
 
 namespace flange {
 
+namespace diagnostic {
+template <class F>
+struct torque_input_type_not_given {
+  static_assert(always_false<F>,
+                "flange: this Torque's M_ext is a callable, but the Torque's input type was not given: write "
+                "torque<\"name\">(f), or Torque<\"name\", decltype(f)>({.M_ext = f})");
+};
+}  // namespace diagnostic
+
 template <fixed_string Name, class In = Vec3d>
 class Torque {
  public:
@@ -28,9 +37,9 @@ class Torque {
   static constexpr bool exerts_force = false, exerts_torque = true;
 
   struct params {
-    In M_ext;
+    input_slot<In, diagnostic::torque_input_type_not_given> M_ext;
   };
-  explicit Torque(params p) : M_ext_(std::move(p.M_ext)) {
+  explicit Torque(params p) : M_ext_(take_input(std::move(p.M_ext))) {
     if constexpr (is_constant_input<In>)
       detail::require_finite(name.view(), "Torque", "M_ext", M_ext_);
   }

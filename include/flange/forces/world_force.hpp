@@ -29,6 +29,15 @@ struct force {};
 struct torque {};
 }  // namespace load
 
+namespace diagnostic {
+template <class F>
+struct world_load_input_type_not_given {
+  static_assert(always_false<F>,
+                "flange: this WorldForce's or WorldTorque's value is a callable, but its input type was not given: "
+                "write WorldForce<\"name\", decltype(f)>({.value = f}) (or WorldTorque<…>)");
+};
+}  // namespace diagnostic
+
 template <fixed_string Name, class What, class In = Vec3d, class Frame = resolve::world>
 class WorldLoad {
  public:
@@ -44,9 +53,9 @@ class WorldLoad {
   static constexpr bool exerts_force = is_force, exerts_torque = !is_force;
 
   struct params {
-    In value;  ///< f_ext [N] or τ_ext [N m]
+    input_slot<In, diagnostic::world_load_input_type_not_given> value;  ///< f_ext [N] or τ_ext [N m]
   };
-  explicit WorldLoad(params p) : value_(std::move(p.value)) {
+  explicit WorldLoad(params p) : value_(take_input(std::move(p.value))) {
     if constexpr (is_constant_input<In>)
       detail::require_finite(name.view(), type_name, is_force ? "f_ext" : "tau_ext", value_);
   }

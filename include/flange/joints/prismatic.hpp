@@ -31,22 +31,33 @@
 
 namespace flange {
 
+namespace diagnostic {
+template <class F>
+struct prismatic_input_type_not_given {
+  static_assert(always_false<F>,
+                "flange: this Prismatic's force f is a callable, but the Prismatic's force type was not given: "
+                "write prismatic<\"name\", axis::x>(f), or Prismatic<\"name\", axis::x, decltype(f)>({.f = f})");
+};
+}  // namespace diagnostic
+
 namespace detail {
+template <class Force>
+using prismatic_force_slot = input_slot<Force, diagnostic::prismatic_input_type_not_given>;
 // The parameters: the axis n (a run-time axis only), the force input f, and
 // the axis law's numbers.
 template <class Axis, class Force, class Law>
 struct prismatic_params {
   Vec3d n = Vec3d::UnitX();
-  Force f{};
+  prismatic_force_slot<Force> f{};
 };
 template <int I, class Force>
 struct prismatic_params<axis::coordinate<I>, Force, axis_law::none> {
-  Force f{};
+  prismatic_force_slot<Force> f{};
 };
 template <class Axis, class Force>
 struct prismatic_params<Axis, Force, axis_law::spring_damper> {
   Vec3d n = Vec3d::UnitX();  ///< ignored for a compile-time axis
-  Force f{};
+  prismatic_force_slot<Force> f{};
   double c = 0;   ///< stiffness [N/m]
   double d = 0;   ///< damping [N s/m]
   double s0 = 0;  ///< rest position [m]
@@ -54,7 +65,7 @@ struct prismatic_params<Axis, Force, axis_law::spring_damper> {
 template <class Axis, class Force>
 struct prismatic_params<Axis, Force, axis_law::friction> {
   Vec3d n = Vec3d::UnitX();  ///< ignored for a compile-time axis
-  Force f{};
+  prismatic_force_slot<Force> f{};
   double d = 0;       ///< viscous friction [N s/m]
   double f_c = 0;     ///< Coulomb friction force [N]
   double v_s = 1e-3;  ///< regularisation speed [m/s]: tanh(ṡ / v_s)
@@ -128,7 +139,7 @@ class Prismatic {
 
   using params = detail::prismatic_params<Axis, Force, Law>;
 
-  explicit Prismatic(params p) : f_(std::move(p.f)) {
+  explicit Prismatic(params p) : f_(take_input(std::move(p.f))) {
     if constexpr (Axis::fixed) n_ = Axis::unit();
     else n_ = detail::unit_axis(name.view(), "Prismatic", p.n);
     if constexpr (std::is_arithmetic_v<Force>) detail::require_finite(name.view(), "Prismatic", "f", f_);

@@ -7,8 +7,19 @@
 //
 // Frames 1, 2 are frame_a, frame_b; φ and R_rel are internal variables. R_rel
 // is the transpose of the active Rodrigues matrix: frame_b is frame_a turned by
-// +φ about n. The joint transmits no torque about n: it is driven by a Torque
-// element, or by nothing.
+// +φ about n. Undriven, the joint transmits no torque about n.
+//
+// A drive (Modelica's useAxisFlange with a torque source, in one component):
+// Revolute<"elbow", axis::z, axis_law::none, Tau>({.tau = τ}), or the factory
+// revolute<"elbow", axis::z>(τ) that deduces Tau, takes a torque input τ about
+// the axis: a constant, a callable τ(t) or τ(t, x) of the joint state (see
+// joint_state), with no virtual call. τ > 0 turns frame_b toward +φ, and the
+// last equation becomes
+//
+//   τ = −M₂·n          (with an axis law:  τ − (c·(φ − φ0) + d·φ̇) = −M₂·n)
+//
+// A joint without a drive (Tau = undriven, the default) has no input and no
+// input arithmetic.
 //
 // Revolute<"elbow", axis::z> fixes the axis at compile time; Revolute<"elbow">
 // takes it at construction.
@@ -50,7 +61,19 @@
 
 namespace flange {
 
+namespace diagnostic {
+template <class F>
+struct revolute_input_type_not_given {
+  static_assert(always_false<F>,
+                "flange: this Revolute's drive torque tau is a callable, but the Revolute's torque type was not "
+                "given: write revolute<\"name\", axis::z>(f), or Revolute<\"name\", axis::z, axis_law::none, "
+                "decltype(f)>({.tau = f})");
+};
+}  // namespace diagnostic
+
 namespace detail {
+template <class Tau>
+using revolute_torque_slot = input_slot<Tau, diagnostic::revolute_input_type_not_given>;
 template <class Axis, class Law>
 struct revolute_params {
   Vec3d n = Vec3d::UnitZ();
@@ -67,6 +90,33 @@ struct revolute_params<Axis, axis_law::spring_damper> {
 template <class Axis>
 struct revolute_params<Axis, axis_law::friction> {
   Vec3d n = Vec3d::UnitZ();  ///< ignored for a compile-time axis
+  double d = 0;              ///< viscous friction [N m s/rad]
+  double f_c = 0;            ///< Coulomb friction torque [N m]
+  double v_s = 1e-3;         ///< regularisation speed [rad/s]: tanh(φ̇ / v_s)
+};
+
+/// The parameters of a driven joint: the same, and the torque input τ.
+template <class Axis, class Law, class Tau>
+struct revolute_driven_params {
+  Vec3d n = Vec3d::UnitZ();  ///< ignored for a compile-time axis
+  revolute_torque_slot<Tau> tau{};  ///< the drive's torque about the axis [N m]
+};
+template <int I, class Tau>
+struct revolute_driven_params<axis::coordinate<I>, axis_law::none, Tau> {
+  revolute_torque_slot<Tau> tau{};  ///< the drive's torque about the axis [N m]
+};
+template <class Axis, class Tau>
+struct revolute_driven_params<Axis, axis_law::spring_damper, Tau> {
+  Vec3d n = Vec3d::UnitZ();  ///< ignored for a compile-time axis
+  revolute_torque_slot<Tau> tau{};  ///< the drive's torque about the axis [N m]
+  double c = 0;              ///< stiffness [N m/rad]
+  double d = 0;              ///< damping [N m s/rad]
+  double phi0 = 0;           ///< rest angle [rad]
+};
+template <class Axis, class Tau>
+struct revolute_driven_params<Axis, axis_law::friction, Tau> {
+  Vec3d n = Vec3d::UnitZ();  ///< ignored for a compile-time axis
+  revolute_torque_slot<Tau> tau{};  ///< the drive's torque about the axis [N m]
   double d = 0;              ///< viscous friction [N m s/rad]
   double f_c = 0;            ///< Coulomb friction torque [N m]
   double v_s = 1e-3;         ///< regularisation speed [rad/s]: tanh(φ̇ / v_s)
@@ -123,7 +173,7 @@ struct revolute_motion {
 };
 }  // namespace detail
 
-template <fixed_string Name, class Axis = axis::any, class Law = axis_law::none>
+template <fixed_string Name, class Axis = axis::any, class Law = axis_law::none, class Tau = undriven>
 class Revolute {
  public:
   static constexpr auto name = Name;
@@ -136,6 +186,7 @@ class Revolute {
   static constexpr bool has_spring_damper = std::is_same_v<Law, axis_law::spring_damper>;
   static constexpr bool has_friction = std::is_same_v<Law, axis_law::friction>;
   static constexpr bool has_law = has_spring_damper || has_friction;
+  static constexpr bool driven = !std::is_same_v<Tau, undriven>;
 
   // ---------------------------------------------------------- motion
   static constexpr int nq = 1, nv = 1;
@@ -144,17 +195,20 @@ class Revolute {
   static constexpr int planar_normal() { return Axis::fixed ? Axis::index : -1; }
   static constexpr bool moves_in_plane(int k) { return Axis::fixed && Axis::index == k; }
 
-  using params = detail::revolute_params<Axis, Law>;
+  using params = std::conditional_t<driven, detail::revolute_driven_params<Axis, Law, Tau>,
+                                    detail::revolute_params<Axis, Law>>;
 
   Revolute() : Revolute(params{}) {}
-  explicit Revolute(params p) {
+  explicit Revolute(params p) : tau_(take_tau(p)) {
     if constexpr (Axis::fixed) n_ = Axis::unit();
     else n_ = detail::unit_axis(name.view(), "Revolute", p.n);
+    if constexpr (std::is_arithmetic_v<Tau>) detail::require_finite(name.view(), "Revolute", "tau", tau_);
     if constexpr (has_spring_damper) law_ = detail::make_axis_law<Law>(name.view(), "Revolute", p, p.phi0);
     if constexpr (has_friction) law_ = detail::make_axis_law<Law>(name.view(), "Revolute", p, 0.0);
   }
 
   [[nodiscard]] const Vec3d& n() const { return n_; }
+  [[nodiscard]] const Tau& tau() const { return tau_; }
 
   [[nodiscard]] static std::array<double, 1> neutral() { return {0.0}; }
 
@@ -201,12 +255,14 @@ class Revolute {
     v[0] = *get(0, true);
   }
 
-  /// The axis law's generalized force on φ: −c·(φ − φ0) − d·φ̇, or
-  /// −d·φ̇ − F_c·tanh(φ̇ / v_s).
+  /// The generalized force on φ: the drive's torque input at (t, x), and
+  /// the axis law's −c·(φ − φ0) − d·φ̇, or −d·φ̇ − F_c·tanh(φ̇ / v_s).
   template <class T>
-    requires has_law
-  void generalized_force(const T&, const joint_state<T>&, const T* q, const T* v, T* tau) const {
-    tau[0] = detail::axis_law_force<Law>(law_, q[0], v[0]);
+    requires(has_law || driven)
+  void generalized_force(const T& t, const joint_state<T>& x, const T* q, const T* v, T* tau) const {
+    if constexpr (driven && has_law) tau[0] = eval_input(tau_, t, x) + detail::axis_law_force<Law>(law_, q[0], v[0]);
+    else if constexpr (driven) tau[0] = eval_input(tau_, t, x);
+    else tau[0] = detail::axis_law_force<Law>(law_, q[0], v[0]);
   }
   /// A state set by hand: the coordinate and its rate.
   struct state {
@@ -240,14 +296,40 @@ class Revolute {
   }
 
  private:
+  static Tau take_tau(params& p) {
+    if constexpr (driven) return take_input(std::move(p.tau));
+    else return {};
+  }
   auto axis_equation(const expr::param<Vec3d>& n) const {
     using namespace expr;
-    if constexpr (has_law) return eq(dot(M_<1>, n), flange::detail::axis_law_resistance<Law>(law_, phi, "φ0"));
-    else return eq(zero<shape::scalar>{}, dot(M_<1>, n));
+    if constexpr (driven) {
+      const input_node<Tau, shape::scalar> tau{{}, &tau_, "τ"};
+      if constexpr (has_law) return eq(tau - flange::detail::axis_law_resistance<Law>(law_, phi, "φ0"), -dot(M_<1>, n));
+      else return eq(tau, -dot(M_<1>, n));
+    } else if constexpr (has_law) {
+      return eq(dot(M_<1>, n), flange::detail::axis_law_resistance<Law>(law_, phi, "φ0"));
+    } else {
+      return eq(zero<shape::scalar>{}, dot(M_<1>, n));
+    }
   }
 
   Vec3d n_;
+  [[no_unique_address]] Tau tau_;
   detail::axis_law_values law_;
 };
 
+}  // namespace flange
+
+namespace flange {
+/// A driven Revolute with the torque input's type deduced:
+/// revolute<"elbow", axis::z>(τ) or revolute<"elbow">(τ, n).
+template <fixed_string Name, class Axis, class Tau>
+  requires Axis::fixed
+auto revolute(Tau tau) {
+  return Revolute<Name, Axis, axis_law::none, Tau>({std::move(tau)});
+}
+template <fixed_string Name, class Tau>
+auto revolute(Tau tau, const Vec3d& n) {
+  return Revolute<Name, axis::any, axis_law::none, Tau>({n, std::move(tau)});
+}
 }  // namespace flange
