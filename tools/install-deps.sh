@@ -1,19 +1,21 @@
 #!/usr/bin/env bash
 # Installs, with apt-get, the Debian 12 packages flange needs that are missing.
 # Run as root (or with sudo). Nothing is installed when everything is there.
-#   tools/install-deps.sh            compiler, CMake, Eigen, Boost, Catch2, Google Benchmark,
+#   tools/install-deps.sh            compiler, CMake, Eigen, Boost 1.81, Catch2, Google Benchmark,
 #                                    valgrind (the memcheck test)
 #   tools/install-deps.sh --plots    also gnuplot, for docs/*.png
 #   tools/install-deps.sh --peers    also MuJoCo and Simbody, the work-precision study's peers
 #   tools/install-deps.sh --ensembles  also oneTBB, Boost.MPI and Open MPI, for parallel ensembles
 # (the options may be given together.)
 set -euo pipefail
-packages=(g++ cmake make libeigen3-dev libboost-dev catch2 libbenchmark-dev valgrind)
+# Boost 1.81, not Debian's default 1.74: its uBLAS compiles as C++20, which
+# keeps rosenbrock4 header-only. Installing it replaces libboost1.74-dev.
+packages=(g++ cmake make libeigen3-dev libboost1.81-dev catch2 libbenchmark-dev valgrind)
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(gnuplot-nox) ;;
     --peers) packages+=(libmujoco-dev libsimbody-dev) ;;
-    --ensembles) packages+=(libtbb-dev libboost-mpi-dev openmpi-bin) ;;
+    --ensembles) packages+=(libtbb-dev libboost-mpi1.81-dev openmpi-bin) ;;
     *) echo "install-deps: unknown option $arg (use --plots, --peers, --ensembles)" >&2; exit 2 ;;
   esac
 done

@@ -255,7 +255,8 @@ class study {
       last = x;
       have_last = true;
       // odeint::integrate_adaptive's loop for dense-output steppers (Boost
-      // 1.74: whole steps while they end before t1, then one aimed at t1),
+      // 1.74 and 1.81 alike: whole steps while they end before t1, then one
+      // aimed at t1),
       // with the recorders watching each step.
       using odeint::detail::less_eq_with_sign;
       using odeint::detail::less_with_sign;

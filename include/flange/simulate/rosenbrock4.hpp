@@ -2,23 +2,38 @@
 //
 //   auto steps = flange::integrate_rosenbrock4(scene, x, 0.0, 10.0, 1e-3, 1e-8, 1e-8);
 //
-// Link the optional library flange::rosenbrock4 (src/rosenbrock4.cpp): Odeint's
-// rosenbrock4 needs uBLAS, which in Boost 1.74 does not compile as C++20, so it
-// is built as C++17 and called through function pointers. The Jacobian comes
-// from dual numbers (simulate/jacobian.hpp). Exceptions thrown in the
-// derivative (a singular mass matrix, …) are carried across and rethrown.
+// Header-only, like the rest of flange: Odeint's rosenbrock4 works on uBLAS
+// vectors and matrices, which compile as C++20 from Boost 1.81 on (Boost
+// 1.74's uBLAS called std::allocator::construct, which C++20 removed, and
+// needed a separately compiled C++17 bridge). The Jacobian comes from dual
+// numbers (simulate/jacobian.hpp), or central differences on request.
+// Exceptions thrown in the derivative (a singular mass matrix, …) pass
+// through the stepper to the caller.
 //
 // Time is integrated as an extra state τ with τ' = 1, so rosenbrock4 sees an
-// autonomous system and ∂f/∂t enters as the Jacobian column ∂f/∂τ. This is not
-// optional: Boost 1.74's rosenbrock4 handles the explicit time derivative
-// wrongly and falls to first order on a time-dependent system, even with the
-// exact ∂f/∂t (for x' = cos t: error 7e-4 at tolerance 1e-6, falling only 10×
-// per 100× tighter tolerance; tests/jacobian_test.cpp shows the repair).
+// autonomous system and ∂f/∂t enters as the Jacobian column ∂f/∂τ. Boost
+// 1.74's rosenbrock4 handled the explicit time derivative wrongly and fell to
+// first order on a time-dependent system (for x' = cos t: error 7e-4 at
+// tolerance 1e-6, falling only 10× per 100× tighter tolerance;
+// tests/jacobian_test.cpp keeps the check); the augmented form is right in
+// every version.
+//
+// uBLAS vectors live on the heap: unlike the explicit steppers, this one
+// allocates (Odeint's, per step), which is why it is not in the no-heap test.
 #pragma once
-#include <exception>
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <type_traits>
+
+#include <boost/numeric/odeint/integrate/integrate_adaptive.hpp>
+#include <boost/numeric/odeint/integrate/integrate_const.hpp>
+#include <boost/numeric/odeint/stepper/generation.hpp>
+#include <boost/numeric/odeint/stepper/rosenbrock4.hpp>
+#include <boost/numeric/odeint/stepper/rosenbrock4_controller.hpp>
+#include <boost/numeric/odeint/stepper/rosenbrock4_dense_output.hpp>
 
 #include "flange/simulate/jacobian.hpp"
-#include "flange/simulate/rosenbrock4_bridge.h"
 
 namespace flange {
 
@@ -46,77 +61,60 @@ template <class Method = jacobian_method::exact, class S, class State, class Obs
 std::size_t integrate_rosenbrock4(const S& scene, State& x, double t0, double t1, double dt, double abs_tol,
                                   double rel_tol, Observer observer = nullptr, double observe_dt = 0,
                                   stiff_stats* stats = nullptr) {
+  namespace odeint = boost::numeric::odeint;
+  using vector = boost::numeric::ublas::vector<double>;
+  using matrix = boost::numeric::ublas::matrix<double>;
   S::require_state_size(x);
   constexpr int n = S::n_state;  // the augmented state is (x, τ): n + 1
-  struct context {
-    const S* scene;
-    Observer* observer;
-    std::exception_ptr error;
-    stiff_stats counts;
-  } ctx{&scene, &observer, nullptr, {}};
-  flange_stiff_callbacks cb{};
-  cb.context = &ctx;
-  cb.n = n + 1;
-  cb.f = [](void* c, const double* xs, double* d, double) {
-    auto& k = *static_cast<context*>(c);
-    ++k.counts.rhs_evals;
-    try {
-      std::array<double, n> a, b;
-      std::copy_n(xs, n, a.begin());
-      (*k.scene)(a, b, xs[n]);
-      std::copy_n(b.begin(), n, d);
-      d[n] = 1;  // τ' = 1
-    } catch (...) {
-      k.error = std::current_exception();
-      throw;
+  stiff_stats counts;
+  auto f = [&](const vector& xs, vector& d, double) {
+    ++counts.rhs_evals;
+    std::array<double, n> a, b;
+    std::copy_n(xs.begin(), n, a.begin());
+    scene(a, b, xs[n]);
+    std::copy_n(b.begin(), n, d.begin());
+    d[n] = 1;  // τ' = 1
+  };
+  auto jac = [&](const vector& xs, matrix& J, double, vector& dfdt) {
+    ++counts.jacobian_evals;
+    std::array<double, n> a;
+    std::copy_n(xs.begin(), n, a.begin());
+    Eigen::Matrix<double, n, 1> ft;
+    const auto Je = [&] {
+      if constexpr (std::is_same_v<Method, jacobian_method::finite_difference>)
+        return jacobian_finite_difference(scene, xs[n], a, &ft);
+      else return jacobian(scene, xs[n], a, &ft);
+    }();
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) J(i, j) = Je(i, j);
+      J(i, n) = ft(i);  // ∂f/∂τ
+    }
+    for (int j = 0; j <= n; ++j) J(n, j) = 0;  // τ' = 1 depends on nothing
+    for (int i = 0; i <= n; ++i) dfdt[i] = 0;  // autonomous
+  };
+  auto observe = [&](const vector& xs, double t) {
+    if constexpr (!std::is_same_v<Observer, std::nullptr_t>) {
+      State s = x;
+      std::copy_n(xs.begin(), n, s.begin());
+      observer(s, t);
+    } else {
+      (void)xs, (void)t;
     }
   };
-  cb.jacobian = [](void* c, const double* xs, double* J, double* dfdt, double) {
-    auto& k = *static_cast<context*>(c);
-    ++k.counts.jacobian_evals;
-    try {
-      std::array<double, n> a;
-      std::copy_n(xs, n, a.begin());
-      Eigen::Matrix<double, n, 1> ft;
-      const auto Je = [&] {
-        if constexpr (std::is_same_v<Method, jacobian_method::finite_difference>)
-          return jacobian_finite_difference(*k.scene, xs[n], a, &ft);
-        else return jacobian(*k.scene, xs[n], a, &ft);
-      }();
-      constexpr int m = n + 1;
-      for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) J[i * m + j] = Je(i, j);
-        J[i * m + n] = ft(i);  // ∂f/∂τ
-      }
-      for (int j = 0; j < m; ++j) J[n * m + j] = 0;  // τ' = 1 depends on nothing
-      for (int i = 0; i < m; ++i) dfdt[i] = 0;       // autonomous
-    } catch (...) {
-      k.error = std::current_exception();
-      throw;
-    }
-  };
-  if constexpr (!std::is_same_v<Observer, std::nullptr_t>) {
-    cb.observe = [](void* c, const double* xs, double t) {
-      auto& k = *static_cast<context*>(c);
-      State s;
-      std::copy_n(xs, n, s.begin());
-      (*k.observer)(s, t);
-    };
-  }
-  std::array<double, n + 1> xs;
+  vector xs(n + 1);
   std::copy_n(x.begin(), n, xs.begin());
   xs[n] = t0;
-  const long steps = flange_rosenbrock4_integrate(&cb, xs.data(), t0, t1, dt, abs_tol, rel_tol, observe_dt);
-  if (steps < 0) {
-    if (ctx.error) std::rethrow_exception(ctx.error);
-    throw simulation_error("flange: rosenbrock4 failed", t0);
-  }
+  auto stepper = odeint::make_dense_output(abs_tol, rel_tol, odeint::rosenbrock4<double>());
+  const auto system = std::make_pair(f, jac);
+  const std::size_t steps = observe_dt > 0
+                                ? odeint::integrate_const(stepper, system, xs, t0, t1, observe_dt, observe)
+                                : odeint::integrate_adaptive(stepper, system, xs, t0, t1, dt, observe);
   std::copy_n(xs.begin(), n, x.begin());
   if (stats) {
-    *stats = ctx.counts;
-    stats->steps = steps;
+    *stats = counts;
+    stats->steps = static_cast<long>(steps);
   }
-  return static_cast<std::size_t>(steps);
+  return steps;
 }
 
 }  // namespace flange
