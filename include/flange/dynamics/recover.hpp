@@ -22,8 +22,24 @@
 #include "flange/dynamics/forward_dynamics.hpp"
 #include "flange/dynamics/kinematics.hpp"
 #include "flange/equations/residual.hpp"
+#include "flange/scene/joint_check.hpp"
 
 namespace flange {
+
+namespace diagnostic {
+template <class Component>
+struct no_component_of_this_name {
+  static_assert(always_false<Component>,
+                "flange: internal<\"component\", \"variable\">(): the scene has no component of this name (the "
+                "template argument)");
+};
+template <class Component, class Variable>
+struct no_internal_of_this_name {
+  static_assert(always_false<Component>,
+                "flange: internal<\"component\", \"variable\">(): this component has no internal variable of this "
+                "name (the second template argument); its header and print_equations list its variables");
+};
+}  // namespace diagnostic
 
 template <class S, class T>
 struct dae_solution {
@@ -43,8 +59,65 @@ struct dae_solution {
   [[nodiscard]] const frame_kinematics<T>& frame(std::string_view name) const { return frames[index(name)]; }
   /// The cut force and torque at the frame named "component.frame".
   [[nodiscard]] const wrench<T>& cut_at(std::string_view name) const { return cut[index(name)]; }
+  /// A component's internal variable by name, found at compile time:
+  /// sol.internal<"buffer", "f">() is a SpringDamper's tension,
+  /// sol.internal<"joint", "R_rel">() a joint's relative rotation. A T, a
+  /// Vec3<T> or a Mat3<T>, by the variable's kind; a misspelt name is one
+  /// static_assert naming it.
+  template <fixed_string Component, fixed_string Variable>
+  [[nodiscard]] auto internal() const {
+    return read<Component, Variable>(y);
+  }
+  /// Its time derivative, where the equations use one (else 0).
+  template <fixed_string Component, fixed_string Variable>
+  [[nodiscard]] auto internal_rate() const {
+    return read<Component, Variable>(yd);
+  }
 
  private:
+  template <fixed_string Component, fixed_string Variable>
+  static constexpr int internal_slot() {
+    constexpr int c = S::index_of(Component.view());
+    if constexpr (c < 0) {
+      (void)sizeof(diagnostic::no_component_of_this_name<member<Component>>);
+      return -1;
+    } else {
+      using C = typename S::template component_type<c>;
+      constexpr int k = [] {
+        for (int i = 0; i < int(C::internals.size()); ++i)
+          if (C::internals[i].name == Variable.view()) return i;
+        return -1;
+      }();
+      if constexpr (k < 0) {
+        (void)sizeof(diagnostic::no_internal_of_this_name<member<Component>, member<Variable>>);
+        return -1;
+      } else {
+        return S::template slot_offset<c>(4 * int(C::frames.size()) + k);
+      }
+    }
+  }
+  template <fixed_string Component, fixed_string Variable>
+  static constexpr expr::var_kind internal_kind() {
+    constexpr int c = S::index_of(Component.view());
+    if constexpr (c < 0) {
+      return expr::var_kind::scalar;
+    } else {
+      using C = typename S::template component_type<c>;
+      for (const auto& d : C::internals)
+        if (d.name == Variable.view()) return d.kind;
+      return expr::var_kind::scalar;
+    }
+  }
+  template <fixed_string Component, fixed_string Variable, class Y>
+  static auto read(const Y& v) {
+    constexpr int o = internal_slot<Component, Variable>();
+    constexpr auto kind = internal_kind<Component, Variable>();
+    if constexpr (o < 0) return T(0);
+    else if constexpr (kind == expr::var_kind::scalar) return T(v(o));
+    else if constexpr (kind == expr::var_kind::vec) return Vec3<T>(v.template segment<3>(o));
+    else return Mat3<T>(Eigen::Map<const Mat3<T>>(v.data() + o));
+  }
+
   static int index(std::string_view name) {
     const int f = S::frame_index(name);
     if (f < 0) throw error(detail::concat("flange: the scene has no frame \"", name, "\""));
