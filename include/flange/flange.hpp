@@ -3,6 +3,7 @@
 #include "flange/math/rotation.hpp"
 #include "flange/components/world.hpp"
 #include "flange/components/body.hpp"
+#include "flange/components/body_shape.hpp"
 #include "flange/components/fixed_translation.hpp"
 #include "flange/components/fixed_rotation.hpp"
 #include "flange/joints/revolute.hpp"

@@ -45,6 +45,36 @@ struct diagonal {};  ///< J diagonal in frame_a's axes (checked at construction)
 struct point {};     ///< no rotational inertia: a point mass
 }  // namespace inertia_kind
 
+namespace detail {
+/// A body's equations at frame_a, written once for Body and BodyShape: the
+/// force F = m·(R₁·(v̇ − g) + ω̇ × r_CM + ω × (ω × r_CM)) and the moment
+/// J·ω̇ + ω × (J·ω) + r_CM × F it needs, over its internals v and ω.
+template <class V, class W, class M, class C>
+auto body_force(const V& v, const W& w, const M& m, const C& c) {
+  using namespace expr;
+  return m * (R_<0> * (der(v) - gravity{}) + cross(der(w), c) + cross(w, cross(w, c)));
+}
+template <class W, class J, class C, class F>
+auto body_moment(const W& w, const J& I, const C& c, const F& f) {
+  using namespace expr;
+  return I * der(w) + cross(w, I * w) + cross(c, f);
+}
+/// The same as numbers, for a given motion of frame_a (recovery).
+template <class T>
+wrench<T> body_wrench(double m, const Mat3d& J, const Vec3d& r_cm, const frame_kinematics<T>& k, const Vec3<T>& g) {
+  const Mat3<T> I = J.cast<T>();
+  const Vec3<T> c = r_cm.cast<T>();
+  const Vec3<T> F = T(m) * (k.R * (k.a - g) + k.wd.cross(c) + k.w.cross(k.w.cross(c)));
+  return {F, I * k.wd + k.w.cross(I * k.w) + c.cross(F)};
+}
+/// Mass m, inertia J about the centre of mass and the centre r_CM, all in
+/// frame_a: the inertia about frame_a's origin.
+inline Mat3d inertia_about_origin(double m, const Mat3d& J, const Vec3d& r_cm) {
+  const Mat3d c = tilde<double>(r_cm);
+  return J - m * c * c;
+}
+}  // namespace detail
+
 template <fixed_string Name, class CM = cm::at_frame, class Inertia = inertia_kind::full>
 class Body {
  public:
@@ -54,6 +84,7 @@ class Body {
   static constexpr std::array<std::string_view, 1> frames{"frame_a"};
   static constexpr std::array<internal_decl, 2> internals{
       {{"v", expr::var_kind::vec}, {"ω", expr::var_kind::vec}}};
+  static constexpr bool carries_body = true;  ///< has mass at frame_a (core/component.hpp)
   static constexpr bool has_cm_offset = std::is_same_v<CM, cm::offset>;
   static constexpr bool is_point = std::is_same_v<Inertia, inertia_kind::point>;
   static constexpr bool is_diagonal = std::is_same_v<Inertia, inertia_kind::diagonal>;
@@ -108,20 +139,16 @@ class Body {
                                      eq(M_<0>, J * der(w) + cross(w, J * w)));
     } else {
       const param<Vec3d> c{r_cm_, "r_CM"};
-      return boost::hana::make_tuple(
-          eq(v, der(r_<0>)),                                 //
-          skew_eq(tilde(w), R_<0> * transpose(der(R_<0>))),  //
-          eq(F_<0>, m * (R_<0> * (der(v) - gravity{}) + cross(der(w), c) + cross(w, cross(w, c)))),
-          eq(M_<0>, J * der(w) + cross(w, J * w) + cross(c, F_<0>)));
+      return boost::hana::make_tuple(eq(v, der(r_<0>)),                                 //
+                                     skew_eq(tilde(w), R_<0> * transpose(der(R_<0>))),  //
+                                     eq(F_<0>, flange::detail::body_force(v, w, m, c)),          //
+                                     eq(M_<0>, flange::detail::body_moment(w, J, c, F_<0>)));
     }
   }
 
   /// Mass, first moment h = m·r_CM and inertia about frame_a's origin, all in
   /// frame_a coordinates: the body's spatial inertia.
-  [[nodiscard]] Mat3d inertia_about_frame() const {
-    const Mat3d c = tilde<double>(r_cm_);
-    return J_ - m_ * c * c;
-  }
+  [[nodiscard]] Mat3d inertia_about_frame() const { return detail::inertia_about_origin(m_, J_, r_cm_); }
 
   /// The cut force and torque on the body (frame_a coordinates) for a given
   /// motion of frame_a: the right-hand sides of the equations above.
@@ -130,10 +157,7 @@ class Body {
     if constexpr (is_point) {
       return {T(m_) * (k.R * (k.a - g)), Vec3<T>::Zero()};
     } else {
-      const Mat3<T> J = J_.cast<T>();
-      const Vec3<T> c = r_cm_.cast<T>();
-      const Vec3<T> F = T(m_) * (k.R * (k.a - g) + k.wd.cross(c) + k.w.cross(k.w.cross(c)));
-      return {F, J * k.wd + k.w.cross(J * k.w) + c.cross(F)};
+      return detail::body_wrench(m_, J_, r_cm_, k, g);
     }
   }
 

@@ -51,6 +51,15 @@ concept Component = requires {
   C::internals.size();
 };
 
+/// Does the component carry a body at its frame_a: a Body, or a rigid edge
+/// with mass (BodyShape, BodyBox, BodyCylinder)? Such a component declares
+/// m(), J() (about the centre of mass), r_cm(), inertia_about_frame(),
+/// flows(k, g) (the wrench the body needs at frame_a for frame_a's motion k),
+/// and has_cm_offset, is_point, is_diagonal, and its first two internals are
+/// v and ω.
+template <class C>
+inline constexpr bool carries_body = requires { requires C::carries_body; };
+
 // ------------------------------------------------------------ inputs
 
 /// The input type of a joint without a drive: it has no input, and its
@@ -67,6 +76,10 @@ struct joint_state {
   [[nodiscard]] T q(int i) const { return q_[i]; }
   [[nodiscard]] T qd(int i) const { return qd_[i]; }
 };
+/// A joint state of scalar T: joint_state<T> or the scene's named view of it
+/// (scene/named_state.hpp), which inputs see so that they can read joints by name.
+template <class X, class T>
+concept state_of = std::is_base_of_v<joint_state<T>, X>;
 
 /// The parameter slot of an input whose type is a constant (a number or a
 /// 3-vector, the default): it takes the value, or anything convertible to it,
@@ -110,11 +123,12 @@ In&& take_input(In&& in) {
 template <class In>
 inline constexpr bool is_constant_input = std::is_arithmetic_v<In> || std::is_base_of_v<Eigen::EigenBase<In>, In>;
 
-template <class T, class In>
-auto eval_input(const In& in, const T& t, const joint_state<T>& x) {
+template <class T, class In, class X>
+  requires state_of<X, T>
+auto eval_input(const In& in, const T& t, const X& x) {
   if constexpr (is_constant_input<In>) return expr::detail::cast<T>(in);
   else if constexpr (std::is_invocable_v<const In&, const T&>) return expr::detail::cast<T>(in(t));
-  else if constexpr (std::is_invocable_v<const In&, const T&, const joint_state<T>&>)
+  else if constexpr (std::is_invocable_v<const In&, const T&, const X&>)
     return expr::detail::cast<T>(in(t, x));
   else if constexpr (std::is_invocable_v<const In&, double> ||
                      std::is_invocable_v<const In&, double, const joint_state<double>&>)

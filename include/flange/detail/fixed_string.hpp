@@ -13,9 +13,15 @@ struct fixed_string {
   char data[N]{};
   constexpr fixed_string() = default;
   constexpr fixed_string(const char (&s)[N]) { std::copy_n(s, N, data); }
+  /// From a constant string of length N − 1 (a name held in a constexpr table).
+  constexpr explicit fixed_string(std::string_view s) { std::copy_n(s.data(), N - 1, data); }
   [[nodiscard]] constexpr std::string_view view() const { return {data, N - 1}; }
   [[nodiscard]] constexpr std::size_t size() const { return N - 1; }
 };
+
+/// A name as a type, for diagnostics: the compiler prints member<"elbw">.
+template <fixed_string Name>
+struct member {};
 
 /// a + b, at compile time ("j3" + ".frame_b").
 template <std::size_t A, std::size_t B>

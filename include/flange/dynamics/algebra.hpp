@@ -127,7 +127,7 @@ struct inertia_kinds {
       (
           [&]() FLANGE_INLINE_LAMBDA {
             using Comp = typename S::template component_type<C>;
-            if constexpr (Comp::kind == role::body) {
+            if constexpr (carries_body<Comp>) {
               const int set = S::topology.set_of[S::table.frame_base[C]];
               const int L = S::tree.set_link[set];
               if (L < 0) return;

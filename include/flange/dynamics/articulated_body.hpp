@@ -16,6 +16,7 @@
 // with X the link's motion transform (rotation E, offset p) and a₀ = (0, −g).
 // Its matrices are dense in the algebra's dimensions.
 #pragma once
+#include "flange/scene/named_state.hpp"
 #include "flange/detail/inline.hpp"
 #include <array>
 #include <tuple>
@@ -150,7 +151,7 @@ template <class A, class S, class T>
 void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, const T* v, T* vdot) {
   using namespace detail;
   constexpr int NL = S::tree.n_links;
-  const joint_state<T> xs{q, v, S::n_q};
+  const auto xs = state_view<S>(q, v);
   typename aba_workspace<A, S, T>::type ws;
   const auto motions = algebra_motions<A>(scene, q);
   {

@@ -128,7 +128,7 @@ FLANGE_INLINE frame_kinematics<T> frame_from_link(const S& scene, const link_pos
 /// motions; pose_motions: spatial motions with rotations, used when a pose
 /// pass is needed (they may be the same tuple).
 template <class A, class S, class T, class M, class PM>
-FLANGE_INLINE void gather_external(const S& scene, const T& t, const joint_state<T>& x, const M& motions, const PM& pose_motions,
+FLANGE_INLINE void gather_external(const S& scene, const T& t, const state_of<T> auto& x, const M& motions, const PM& pose_motions,
                      link_loads<S, T>& n_ext, link_loads<S, T>& f_ext) {
   constexpr auto F = load_flags<S>::value;
   for (int L = 0; L < S::tree.n_links; ++L) {

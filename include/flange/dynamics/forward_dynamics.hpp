@@ -8,6 +8,7 @@
 // accelerations_newton_euler and accelerations_planar force one algebra, for
 // the tests that hold the two against each other.
 #pragma once
+#include "flange/scene/named_state.hpp"
 #include "flange/detail/inline.hpp"
 #include <array>
 #include <string>
@@ -21,9 +22,23 @@ namespace flange {
 
 namespace detail {
 
+/// Does any joint of the scene have a generalized force of its own (an input
+/// or an axis law)? If none does, τ is zero by the scene's type and the
+/// derivative computes −b directly.
+template <class J>
+concept has_generalized_force = requires(const J& j, const double* p, double* tau, const joint_state<double>& x) {
+  j.generalized_force(0.0, x, p, p, tau);
+};
+template <class S>
+constexpr bool has_joint_forces() {
+  return []<int... L>(std::integer_sequence<int, L...>) {
+    return (has_generalized_force<typename link_info<S, L + 1>::joint_type> || ...);
+  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+}
+
 /// The joints' own generalized forces (a Prismatic's force input, axis laws).
 template <class S, class T>
-void joint_forces(const S& scene, const T& t, const joint_state<T>& x, T* tau) {
+void joint_forces(const S& scene, const T& t, const state_of<T> auto& x, T* tau) {
   for (int i = 0; i < S::n_v; ++i) tau[i] = T(0);
   for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
     using LI = link_info<S, decltype(l)::value>;
@@ -79,16 +94,20 @@ template <class A, class S, class T, class M, class PM>
 [[gnu::always_inline]] inline void solve_accelerations(const S& scene, const T& t, const T* q, const T* v, T* vdot,
                                                       const M& motions, const PM& pose) {
   constexpr int N = S::n_v;
-  const joint_state<T> x{q, v, S::n_q};
+  const auto x = state_view<S>(q, v);
   link_loads<S, T> n_ext, f_ext;
   gather_external<A>(scene, t, x, motions, pose, n_ext, f_ext);
-  std::array<T, N> b, tau, scale;
+  std::array<T, N> b, scale, r;
   inverse_dynamics<A>(scene, motions, v, no_rates{}, n_ext, f_ext, b.data());
-  joint_forces(scene, t, x, tau.data());
+  if constexpr (has_joint_forces<S>()) {
+    std::array<T, N> tau;
+    joint_forces(scene, t, x, tau.data());
+    for (int i = 0; i < N; ++i) r[i] = tau[i] - b[i];
+  } else {
+    for (int i = 0; i < N; ++i) r[i] = -b[i];
+  }
   Eigen::Matrix<T, N, N> Mm;
   mass_matrix<A>(scene, motions, Mm, scale.data());
-  std::array<T, N> r;
-  for (int i = 0; i < N; ++i) r[i] = tau[i] - b[i];
   if (const auto pivot = solve_spd<N>(Mm, r.data(), vdot, scale.data()); pivot.index >= 0) [[unlikely]]
     singular_mass_matrix<S>(pivot, t, q, v);
 }
@@ -135,7 +154,7 @@ Eigen::Matrix<T, S::n_v, S::n_v> mass_matrix(const S& scene, const T* q) {
 template <class S, class T>
 std::array<T, S::n_v> inverse_dynamics(const S& scene, const T& t, const T* q, const T* v, const T* vdot) {
   using namespace detail;
-  const joint_state<T> x{q, v, S::n_q};
+  const auto x = state_view<S>(q, v);
   std::array<T, S::n_v> tau;
   const auto motions = link_motions<spatial_algebra, T, true>(scene, q);
   link_loads<S, T> n_ext, f_ext;

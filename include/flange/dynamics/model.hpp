@@ -85,7 +85,7 @@ auto build_model(const S& scene) {
     // The whole mass, the yardstick for lengths: m·|p|² must stay finite.
     double total_mass = 0;
     for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
-      if constexpr (std::remove_cvref_t<decltype(c)>::kind == role::body) {
+      if constexpr (carries_body<std::remove_cvref_t<decltype(c)>>) {
         total_mass += c.m();
         if (!std::isfinite(total_mass))
           throw parameter_error(concat(describe_component(scene, decltype(i)::value), ": mass m = ", c.m(),
@@ -120,7 +120,7 @@ auto build_model(const S& scene) {
     }
     for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
       using C = std::remove_cvref_t<decltype(c)>;
-      if constexpr (C::kind == role::body) {
+      if constexpr (carries_body<C>) {
         const int s = topo.set_of[S::table.frame_base[decltype(i)::value]];
         if (tree.set_link[s] < 0) return;
         // The body's mass, first moment and inertia about frame_a, in the

@@ -14,6 +14,7 @@
 // at an edge's child-side frame is minus the sum of the others; the edge's
 // force and moment balance (core/joint.hpp) then gives its parent-side flow.
 #pragma once
+#include "flange/scene/named_state.hpp"
 #include "flange/detail/inline.hpp"
 #include <array>
 #include <string_view>
@@ -27,19 +28,37 @@
 namespace flange {
 
 namespace diagnostic {
-template <class Component>
+template <class Component, class Closest>
 struct no_component_of_this_name {
   static_assert(always_false<Component>,
                 "flange: internal<\"component\", \"variable\">(): the scene has no component of this name (the "
-                "template argument)");
+                "first template argument); did you mean the second?");
 };
-template <class Component, class Variable>
+template <class Component, class Variable, class Closest>
 struct no_internal_of_this_name {
   static_assert(always_false<Component>,
                 "flange: internal<\"component\", \"variable\">(): this component has no internal variable of this "
-                "name (the second template argument); its header and print_equations list its variables");
+                "name (the second template argument); did you mean the third? Its header and print_equations list "
+                "its variables");
 };
 }  // namespace diagnostic
+
+namespace detail {
+/// The names of component C's internal variables, Greek letters in ASCII
+/// (as a suggestion prints them readably).
+template <class C>
+inline constexpr auto internal_ascii = [] {
+  std::array<ascii_name, C::internals.size()> a{};
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = ascii_name(C::internals[i].name);
+  return a;
+}();
+template <class C>
+inline constexpr auto internal_names = [] {
+  std::array<std::string_view, C::internals.size()> a{};
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = internal_ascii<C>[i].view();
+  return a;
+}();
+}  // namespace detail
 
 template <class S, class T>
 struct dae_solution {
@@ -79,17 +98,19 @@ struct dae_solution {
   static constexpr int internal_slot() {
     constexpr int c = S::index_of(Component.view());
     if constexpr (c < 0) {
-      (void)sizeof(diagnostic::no_component_of_this_name<member<Component>>);
+      (void)sizeof(diagnostic::no_component_of_this_name<member<Component>,
+                                                          diagnostic::suggest<S::table.names, Component>>);
       return -1;
     } else {
       using C = typename S::template component_type<c>;
       constexpr int k = [] {
         for (int i = 0; i < int(C::internals.size()); ++i)
-          if (C::internals[i].name == Variable.view()) return i;
+          if (detail::same_name(C::internals[i].name, Variable.view())) return i;
         return -1;
       }();
       if constexpr (k < 0) {
-        (void)sizeof(diagnostic::no_internal_of_this_name<member<Component>, member<Variable>>);
+        (void)sizeof(diagnostic::no_internal_of_this_name<member<Component>, member<Variable>,
+                                                          diagnostic::suggest<detail::internal_names<C>, Variable>>);
         return -1;
       } else {
         return S::template slot_offset<c>(4 * int(C::frames.size()) + k);
@@ -104,7 +125,7 @@ struct dae_solution {
     } else {
       using C = typename S::template component_type<c>;
       for (const auto& d : C::internals)
-        if (d.name == Variable.view()) return d.kind;
+        if (detail::same_name(d.name, Variable.view())) return d.kind;
       return expr::var_kind::scalar;
     }
   }
@@ -124,6 +145,18 @@ struct dae_solution {
     return f;
   }
 };
+
+/// internal<"buffer", "f">(sol): sol.internal<"buffer", "f">() as a free
+/// function, for generic lambdas (where the member needs `template`).
+template <fixed_string Component, fixed_string Variable, class S, class T>
+[[nodiscard]] auto internal(const dae_solution<S, T>& sol) {
+  return sol.template internal<Component, Variable>();
+}
+/// internal_rate<"buffer", "f">(sol): its time derivative.
+template <fixed_string Component, fixed_string Variable, class S, class T>
+[[nodiscard]] auto internal_rate(const dae_solution<S, T>& sol) {
+  return sol.template internal_rate<Component, Variable>();
+}
 
 namespace detail {
 /// The accelerations pass of recovery: ω̇ and a (with −g) of every link at v̇, dense.
@@ -169,7 +202,7 @@ template <class S, class T = double, class State>
   for (int i = 0; i < S::n_q; ++i) sol.q[i] = x[i];
   for (int i = 0; i < S::n_v; ++i) sol.v[i] = x[S::n_q + i];
   accelerations(scene, t, sol.q.data(), sol.v.data(), sol.vdot.data());
-  const joint_state<T> js{sol.q.data(), sol.v.data(), S::n_q};
+  const auto js = state_view<S>(sol.q.data(), sol.v.data());
   const Vec3<T> g = scene.gravity().template cast<T>();
 
   // Link motion, physical: R, r, ṙ, ω from the pose pass; ω̇ and r̈ from the
@@ -242,7 +275,18 @@ template <class S, class T = double, class State>
           if constexpr (C::kind == role::joint) return c.relative_pose(sol.q.data() + tree.q_offset[e]);
           else return c.template relative_pose<T>();
         }();
-        sol.cut[parent] = dir > 0 ? flows_a_from_b(x, sol.cut[child]) : flows_b_from_a(x, sol.cut[child]);
+        if constexpr (carries_body<C>) {
+          // A rigid edge with mass: its body's wrench at frame_a joins frame_a's flows.
+          const wrench<T> body = c.flows(sol.frames[tab.frame_base[e]], g);
+          if (dir > 0) {
+            const wrench<T> a = flows_a_from_b(x, sol.cut[child]);
+            sol.cut[parent] = {a.f + body.f, a.n + body.n};
+          } else {
+            sol.cut[parent] = flows_b_from_a(x, wrench<T>{sol.cut[child].f - body.f, sol.cut[child].n - body.n});
+          }
+        } else {
+          sol.cut[parent] = dir > 0 ? flows_a_from_b(x, sol.cut[child]) : flows_b_from_a(x, sol.cut[child]);
+        }
       }
     });
   }
@@ -297,12 +341,10 @@ template <class S, class T = double, class State>
     }
     if constexpr (requires { c.potential_energy(t, js, &sol.frames[0]); })
       sol.elastic_potential += c.potential_energy(t, js, &sol.frames[tab.frame_base[I]]);
-    if constexpr (C::kind == role::body) {
+    if constexpr (carries_body<C>) {
       const auto& k = sol.frames[tab.frame_base[I]];
-      sol.y.template segment<3>(at(4)) = k.v;
-      sol.y.template segment<3>(at(5)) = k.w;
-      sol.yd.template segment<3>(at(4)) = k.a;
-      sol.yd.template segment<3>(at(5)) = k.wd;
+      set(0, k.v, k.a);   // v
+      set(1, k.w, k.wd);  // ω
       const Vec3<T> cm = c.r_cm().template cast<T>();
       const Vec3<T> vcm = k.v + k.R.transpose() * k.w.cross(cm);
       const T m = T(c.m());

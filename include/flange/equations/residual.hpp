@@ -8,6 +8,7 @@
 #pragma once
 #include <Eigen/Core>
 
+#include "flange/scene/named_state.hpp"
 #include "flange/core/component.hpp"
 #include "flange/core/joint.hpp"
 #include "flange/scene/scene.hpp"
@@ -29,7 +30,7 @@ struct eval_context {
   const T* yd;
   T t;
   Vec3<T> g;
-  joint_state<T> x;
+  named_joint_state<T, S> x;
 
   template <int Slot, expr::var_kind K>
   auto slot(bool derivative) const {
@@ -78,7 +79,7 @@ template <class S, class T, class Vy, class Vyd>
   std::array<T, (S::n_q > 0 ? S::n_q : 1)> q{};
   std::array<T, (S::n_v > 0 ? S::n_v : 1)> v{};
   detail::joint_state_from(scene, y, yd, q.data(), v.data());
-  const joint_state<T> x{q.data(), v.data(), S::n_q};
+  const auto x = state_view<S>(q.data(), v.data());
   const Vec3<T> g = scene.gravity().template cast<T>();
   int row = 0;
   [&]<int... I>(std::integer_sequence<int, I...>) {

@@ -133,7 +133,7 @@ class LineForce {
   /// What the element exerts on the rest of the scene at each of its frames:
   /// force and torque (about the frame's origin), world coordinates.
   template <class T>
-  void wrenches(const T& t, const joint_state<T>&, const frame_kinematics<T>* k, wrench<T>* on) const {
+  void wrenches(const T& t, const state_of<T> auto&, const frame_kinematics<T>* k, wrench<T>* on) const {
     const auto st = evaluate(t, k[0], k[1]);
     on[0] = {st.f * st.e, Vec3<T>::Zero()};
     on[1] = {-(st.f * st.e), Vec3<T>::Zero()};
@@ -141,7 +141,7 @@ class LineForce {
 
   /// The internal variables (s, f) and their rates, for the DAE vector.
   template <class T>
-  [[nodiscard]] std::array<std::pair<T, T>, 2> internal_values(const T& t, const joint_state<T>&,
+  [[nodiscard]] std::array<std::pair<T, T>, 2> internal_values(const T& t, const state_of<T> auto&,
                                                                const frame_kinematics<T>* k) const {
     const auto st = evaluate(t, k[0], k[1]);
     return {std::pair{st.s, st.sd}, std::pair{st.f, T(0)}};  // ḟ appears in no equation
@@ -149,7 +149,7 @@ class LineForce {
 
   /// The spring's potential energy ½·c·(s − s₀)², for recover()'s energy.
   template <class T>
-  [[nodiscard]] T potential_energy(const T& t, const joint_state<T>&, const frame_kinematics<T>* k) const {
+  [[nodiscard]] T potential_energy(const T& t, const state_of<T> auto&, const frame_kinematics<T>* k) const {
     if constexpr (has_spring) {
       const T stretch = evaluate(t, k[0], k[1]).s - T(s0_);
       return T(0.5 * c_) * stretch * stretch;

@@ -45,7 +45,7 @@ class Torque {
   }
 
   template <class T>
-  [[nodiscard]] Vec3<T> torque(const T& t, const joint_state<T>& x) const {
+  [[nodiscard]] Vec3<T> torque(const T& t, const state_of<T> auto& x) const {
     return eval_input(M_ext_, t, x);
   }
 
@@ -61,7 +61,7 @@ class Torque {
   /// What the element exerts at its frames, world coordinates: M_ext on
   /// frame_b's side, −M_ext on frame_a's (M_ext resolved in frame_a).
   template <class T>
-  void wrenches(const T& t, const joint_state<T>& x, const frame_kinematics<T>* k, wrench<T>* on) const {
+  void wrenches(const T& t, const state_of<T> auto& x, const frame_kinematics<T>* k, wrench<T>* on) const {
     const Vec3<T> M = k[0].R.transpose() * torque(t, x);
     on[0] = {Vec3<T>::Zero(), -M};
     on[1] = {Vec3<T>::Zero(), M};

@@ -73,7 +73,7 @@ class WorldLoad {
 
   /// What the element exerts at frame_b, world coordinates.
   template <class T>
-  void wrenches(const T& t, const joint_state<T>& x, const frame_kinematics<T>* k, wrench<T>* on) const {
+  void wrenches(const T& t, const state_of<T> auto& x, const frame_kinematics<T>* k, wrench<T>* on) const {
     Vec3<T> v = eval_input(value_, t, x);
     if constexpr (!in_world) v = k[0].R.transpose() * v;
     if constexpr (is_force) on[0] = {v, Vec3<T>::Zero()};

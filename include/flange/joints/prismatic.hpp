@@ -187,7 +187,7 @@ class Prismatic {
   /// The generalized force on s: the axial force input at (t, x), plus the
   /// axis law's force (joints/axis_law.hpp).
   template <class T>
-  void generalized_force(const T& t, const joint_state<T>& x, const T* q, const T* v, T* tau) const {
+  void generalized_force(const T& t, const state_of<T> auto& x, const T* q, const T* v, T* tau) const {
     if constexpr (has_law) tau[0] = eval_input(f_, t, x) + detail::axis_law_force<Law>(law_, q[0], v[0]);
     else tau[0] = eval_input(f_, t, x);
   }

@@ -259,7 +259,7 @@ class Revolute {
   /// the axis law's −c·(φ − φ0) − d·φ̇, or −d·φ̇ − F_c·tanh(φ̇ / v_s).
   template <class T>
     requires(has_law || driven)
-  void generalized_force(const T& t, const joint_state<T>& x, const T* q, const T* v, T* tau) const {
+  void generalized_force(const T& t, const state_of<T> auto& x, const T* q, const T* v, T* tau) const {
     if constexpr (driven && has_law) tau[0] = eval_input(tau_, t, x) + detail::axis_law_force<Law>(law_, q[0], v[0]);
     else if constexpr (driven) tau[0] = eval_input(tau_, t, x);
     else tau[0] = detail::axis_law_force<Law>(law_, q[0], v[0]);

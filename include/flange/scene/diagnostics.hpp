@@ -9,6 +9,8 @@
 // See docs/diagnostics.md for each message with an example.
 #pragma once
 #include "flange/detail/always_false.hpp"
+#include "flange/detail/closest_name.hpp"
+#include "flange/detail/fixed_string.hpp"
 
 namespace flange {
 
@@ -20,12 +22,21 @@ template <int N> struct state_size_needed {};
 
 namespace diagnostic {
 
-template <class Connection>
+/// The valid name closest to a misspelt one (shown by the compiler).
+template <fixed_string Name>
+struct did_you_mean {};
+
+/// did_you_mean<the entry of Names closest to Name>.
+template <const auto& Names, fixed_string Name>
+using suggest = did_you_mean<fixed_string<Names[detail::closest_name(Name.view(), Names)].size() + 1>(
+    Names[detail::closest_name(Name.view(), Names)])>;
+
+template <class Connection, class Closest>
 struct connection_names_no_frame {
   static_assert(always_false<Connection>,
-                "flange: this connect<\"component.frame\", ...> names a frame that does not exist; check the component "
-                "name (its template argument) and the frame name (frame_a or frame_b; World has frame_b, Body has "
-                "frame_a)");
+                "flange: this connect<\"component.frame\", ...> (the first template argument) names a frame that "
+                "does not exist; did you mean the second? (World has frame_b, Body has frame_a, the others frame_a "
+                "and frame_b)");
 };
 template <class Connection>
 struct frame_listed_twice_in_connection {
@@ -82,6 +93,14 @@ struct not_tied_through_joints {
   static_assert(always_false<Component>,
                 "flange: this component is tied to the World only through force elements (or not at all), so it "
                 "has no joint coordinates; connect it to the World through joints and rigid components");
+};
+
+template <class Component, class Frame>
+struct frame_connected_to_nothing {
+  static_assert(always_false<Component>,
+                "flange: this frame of this component (the template arguments) is connected to nothing, so the "
+                "component is cut off from the mechanism; add connect<\"component.frame\", \"other.frame\"> "
+                "joining it to a frame of the mechanism");
 };
 
 template <class Component>

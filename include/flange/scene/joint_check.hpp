@@ -8,10 +8,6 @@
 
 namespace flange {
 
-/// The name of a missing member, as a type the compiler prints.
-template <fixed_string Name>
-struct member {};
-
 namespace diagnostic {
 template <class Joint, class Member>
 struct joint_lacks_member {

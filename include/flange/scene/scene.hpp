@@ -29,9 +29,11 @@
 
 #include "flange/core/component.hpp"
 #include "flange/core/joint.hpp"
+#include "flange/detail/closest_name.hpp"
 #include "flange/detail/type_list.hpp"
 #include "flange/scene/connect.hpp"
 #include "flange/scene/diagnostics.hpp"
+#include "flange/scene/named_state.hpp"
 #include "flange/scene/joint_check.hpp"
 #include "flange/scene/topology.hpp"
 
@@ -148,14 +150,91 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
   static constexpr auto tree = detail::build_tree(table, topology);
 
   // ---------------------------------------------------------- diagnostics
-  static_assert((detail::report<topology.bad_name_connection, diagnostic::connection_names_no_frame, Ks...>()));
+  // A connection naming no frame: the message, the connection and the frame
+  // name closest to the one it misspells.
+ private:
+  struct name_buffer {
+    char data[128]{};
+    std::size_t size = 0;
+    [[nodiscard]] constexpr std::string_view view() const { return {data, size}; }
+  };
+  /// "component.frame" of global frame f (names up to 127 characters).
+  static constexpr name_buffer frame_name(int f) {
+    name_buffer b;
+    for (int c = 0; c < n_components; ++c)
+      if (f >= table.frame_base[c] && f < table.frame_base[c] + table.nframes[c]) {
+        auto put = [&](std::string_view s) {
+          for (char ch : s)
+            if (b.size < sizeof b.data - 1) b.data[b.size++] = ch;
+        };
+        put(table.names[c]);
+        put(".");
+        put(table.frame_names[c][f - table.frame_base[c]]);
+      }
+    return b;
+  }
+  static constexpr int closest_frame(std::string_view name) {
+    int best = 0, best_d = -1;
+    for (int f = 0; f < n_frames; ++f) {
+      const auto b = frame_name(f);
+      const int d = detail::edit_distance(name, b.view());
+      if (best_d < 0 || d < best_d) best = f, best_d = d;
+    }
+    return best;
+  }
+  template <int K>
+  static constexpr name_buffer misspelt_frame_suggestion =
+      frame_name(closest_frame(detail::find_frame(table, table.conn_a[K]) < 0 ? table.conn_a[K] : table.conn_b[K]));
+  template <int K>
+  static constexpr bool report_bad_name() {
+    if constexpr (K >= 0) {
+      constexpr auto& b = misspelt_frame_suggestion<K>;
+      (void)sizeof(diagnostic::connection_names_no_frame<detail::nth_t<K, Ks...>,
+                                                         diagnostic::did_you_mean<fixed_string<b.size + 1>(b.view())>>);
+    }
+    return true;
+  }
+
+ public:
+  static_assert(report_bad_name<topology.bad_name_connection>());
   static_assert((detail::report<topology.self_connection, diagnostic::frame_listed_twice_in_connection, Ks...>()));
   static_assert((detail::report<topology.redundant_connection, diagnostic::frame_connected_twice_in_one_set, Ks...>()));
   static_assert((detail::report<topology.duplicate_name, diagnostic::duplicate_component_name, Cs...>()));
   static_assert((detail::report<topology.n_worlds == 0 ? 0 : -1, diagnostic::no_world, detail::type_list<Cs...>>()));
   static_assert((detail::report<topology.second_world, diagnostic::two_worlds, Cs...>()));
-  static_assert((detail::report<topology.n_worlds == 1 ? topology.unreached : -1, diagnostic::not_connected_to_world,
-                                Cs...>()));
+  /// Frame k of component c that no connection names (−1 if none).
+  static constexpr int unconnected_frame(int c) {
+    if (c < 0) return -1;
+    for (int k = 0; k < table.nframes[c]; ++k) {
+      bool named = false;
+      for (int j = 0; j < n_connections; ++j)
+        named = named || topology.conn_frame_a[j] == table.frame_base[c] + k ||
+                topology.conn_frame_b[j] == table.frame_base[c] + k;
+      if (!named) return k;
+    }
+    return -1;
+  }
+  /// Reports component C (≥ 0) as cut off from the World: as a frame left
+  /// unconnected if one of its frames is, else by Diag (the wider reason).
+  template <int C, template <class...> class Diag>
+  static constexpr bool report_cut_off() {
+    if constexpr (C >= 0) {
+      using Comp = component_type<C>;
+      constexpr int k = unconnected_frame(C);
+      if constexpr (k >= 0)
+        (void)sizeof(diagnostic::frame_connected_to_nothing<
+                     Comp, member<fixed_string<Comp::frames[k].size() + 1>(Comp::frames[k])>>);
+      else (void)sizeof(Diag<Comp>);
+    }
+    return true;
+  }
+  // Only when the connections themselves were fine: a misspelt one leaves
+  // its component unreached, and that is not a second mistake.
+  static_assert(report_cut_off<(topology.n_worlds == 1 && topology.bad_name_connection < 0 &&
+                                        topology.self_connection < 0
+                                    ? topology.unreached
+                                    : -1),
+                               diagnostic::not_connected_to_world>());
   static_assert((detail::check_joints<Cs...>()));
   /// Whether every joint models the joint concept (core/joint.hpp).
   static constexpr bool joints_complete = (detail::complete_joint<Cs>() && ...);

@@ -38,8 +38,8 @@ class System : public S {
   void operator()(const State& x, State& dxdt, const T t) const {
     static_assert(detail::report_list<(S::topology.ok() ? S::tree.loop : -1), diagnostic::kinematic_loop,
                                       typename S::component_types>::value);
-    static_assert(detail::report_list<(S::topology.ok() && S::tree.loop < 0 ? S::tree.floating : -1),
-                                      diagnostic::not_tied_through_joints, typename S::component_types>::value);
+    static_assert(S::template report_cut_off<(S::topology.ok() && S::tree.loop < 0 ? S::tree.floating : -1),
+                                             diagnostic::not_tied_through_joints>());
     if constexpr (S::joints_complete) derivative(x, dxdt, t);  // else the scene has said what is missing
   }
 
@@ -96,14 +96,22 @@ void normalize(const S& scene, State& x) {
 }
 
 namespace detail {
-/// The joint named Name in scene S, checked at compile time.
+/// The joint named Name in scene S, checked at compile time (a misspelt
+/// name is one error listing the valid ones, scene/named_state.hpp).
 template <class S, fixed_string Name>
 struct named_joint {
-  static constexpr int index = S::index_of(Name.view());
-  static_assert(index >= 0, "flange: the scene has no component of this name");
-  using type = typename S::template component_type<(index < 0 ? 0 : index)>;
-  static_assert(type::kind == role::joint, "flange: this component is not a joint");
+  static constexpr int found = joint_named<S, Name>();
+  static constexpr int index = found >= 0 ? found : joint_indices<S>()[0];  // no second error after the first
+  using type = typename S::template component_type<index>;
 };
+template <class S, class State, int C>
+void write_joint(const S& scene, State& x, const typename S::template component_type<C>::state& value) {
+  std::array<double, S::template component_type<C>::nq> q;
+  std::array<double, S::template component_type<C>::nv> v;
+  scene.template component<C>().write_state(value, q.data(), v.data());
+  for (std::size_t i = 0; i < q.size(); ++i) x[S::tree.q_offset[C] + i] = q[i];
+  for (std::size_t i = 0; i < v.size(); ++i) x[S::n_q + S::tree.v_offset[C] + i] = v[i];
+}
 }  // namespace detail
 
 /// Sets the named joint's coordinates and rates in x from its state type
@@ -113,12 +121,34 @@ struct named_joint {
 template <fixed_string Name, class S, class State>
 void set_joint(const S& scene, State& x, const typename detail::named_joint<S, Name>::type::state& value) {
   S::require_state_size(x);
-  constexpr int c = detail::named_joint<S, Name>::index;
-  std::array<double, S::template component_type<c>::nq> q;
-  std::array<double, S::template component_type<c>::nv> v;
-  scene.template component<c>().write_state(value, q.data(), v.data());
-  for (std::size_t i = 0; i < q.size(); ++i) x[S::tree.q_offset[c] + i] = q[i];
-  for (std::size_t i = 0; i < v.size(); ++i) x[S::n_q + S::tree.v_offset[c] + i] = v[i];
+  detail::write_joint<S, State, detail::named_joint<S, Name>::index>(scene, x, value);
+}
+
+/// The state with the named joints set and every other joint at its neutral
+/// configuration and at rest:
+///
+///   auto x0 = initial_state<"shoulder", "elbow">(arm, {.q = 0.3}, {.q = -0.2, .v = 1});
+///
+/// Each value has its joint's state type (see set_joint); the names are
+/// checked at compile time, and a name given twice is an error.
+template <fixed_string... Names, class S>
+typename S::state_type initial_state(const S& scene,
+                                     const typename detail::named_joint<S, Names>::type::state&... values) {
+  constexpr std::array<int, sizeof...(Names)> idx{detail::named_joint<S, Names>::index...};
+  constexpr int twice = [&] {
+    for (std::size_t i = 0; i < idx.size(); ++i)
+      for (std::size_t j = i + 1; j < idx.size(); ++j)
+        if (idx[i] == idx[j]) return int(i);
+    return -1;
+  }();
+  if constexpr (twice >= 0) {
+    constexpr std::array<std::string_view, sizeof...(Names)> names{Names.view()...};
+    (void)sizeof(diagnostic::joint_named_twice<
+                 member<fixed_string<names[twice].size() + 1>(names[twice])>, void>);
+  }
+  auto x = neutral_state(scene);
+  (detail::write_joint<S, typename S::state_type, detail::named_joint<S, Names>::index>(scene, x, values), ...);
+  return x;
 }
 
 /// Throws parameter_error naming the joint if some joint's coordinates are

@@ -1,0 +1,142 @@
+// Joints by name, resolved at compile time.
+//
+// An input callable f(t, x) sees the joint state x as a named_joint_state of
+// its scene: q<"elbow">(x) and qd<"elbow">(x) read the joint named "elbow"
+// (a number for a one-coordinate joint, a fixed-size vector of its
+// coordinates or rates otherwise) from the scene's table, with no search at
+// run time. x.q(i) and x.qd(i) still read by position.
+//
+// A name that is not a joint of the scene is one error whose instantiation
+// line lists the valid names:
+//
+//   In instantiation of 'struct flange::diagnostic::no_joint_named<flange::member<"elbw">,
+//       flange::diagnostic::did_you_mean<"elbow">, flange::diagnostic::joints<"shoulder", "elbow">>'
+#pragma once
+#include <array>
+#include <cstddef>
+#include <type_traits>
+#include <utility>
+
+#include "flange/core/component.hpp"
+#include "flange/detail/always_false.hpp"
+#include "flange/scene/diagnostics.hpp"
+#include "flange/detail/fixed_string.hpp"
+
+namespace flange {
+
+namespace diagnostic {
+/// The names a misspelt one could have been (shown by the compiler).
+template <fixed_string... Names>
+struct joints {};
+template <class Name, class Closest, class Valid>
+struct no_joint_named {
+  static_assert(always_false<Name>,
+                "flange: the scene has no joint of this name (the first template argument); did you mean the "
+                "second? The joints it has are the third");
+};
+template <class Name, class Valid>
+struct joint_named_twice {
+  static_assert(always_false<Name>,
+                "flange: this joint is given twice in one initial_state<...>; give each joint once");
+};
+}  // namespace diagnostic
+
+namespace detail {
+
+/// The component indices of S's joints, in scene order.
+template <class S>
+constexpr auto joint_indices() {
+  std::array<int, S::n_joints> a{};
+  int k = 0;
+  for (int c = 0; c < S::n_components; ++c)
+    if (S::tree.q_offset[c] >= 0) a[k++] = c;
+  return a;
+}
+template <class S, std::size_t... I>
+auto joint_names_of(std::index_sequence<I...>)
+    -> diagnostic::joints<fixed_string<S::table.names[joint_indices<S>()[I]].size() + 1>(
+        S::table.names[joint_indices<S>()[I]])...>;
+/// diagnostic::joints<"a", "b", …>: S's joint names as a type, for errors.
+template <class S>
+using joint_names = decltype(joint_names_of<S>(std::make_index_sequence<S::n_joints>{}));
+
+template <class S>
+inline constexpr auto joint_name_table = [] {
+  std::array<std::string_view, S::n_joints> a{};
+  for (int k = 0; k < S::n_joints; ++k) a[k] = S::table.names[joint_indices<S>()[k]];
+  return a;
+}();
+
+/// The component index of the joint named Name, or −1 after one diagnostic
+/// listing the valid names.
+template <class S, fixed_string Name>
+constexpr int joint_named() {
+  constexpr int c = S::index_of(Name.view());
+  if constexpr (c < 0 || S::tree.q_offset[c < 0 ? 0 : c] < 0) {
+    (void)sizeof(
+        diagnostic::no_joint_named<member<Name>, diagnostic::suggest<joint_name_table<S>, Name>, joint_names<S>>);
+    return -1;
+  } else {
+    return c;
+  }
+}
+
+}  // namespace detail
+
+/// The joint state of scene S as an input callable sees it: by position
+/// (x.q(i), x.qd(i)) as joint_state, and by name (q<"elbow">(x)).
+template <class T, class S>
+struct named_joint_state : joint_state<T> {
+  using scene_type = S;
+  using joint_state<T>::q;
+  using joint_state<T>::qd;
+
+  /// The named joint's coordinates: a T for a one-coordinate joint, else a
+  /// vector of its nq coordinates (a quaternion's four, x, y, z, w as Eigen stores them).
+  template <fixed_string Name>
+  [[nodiscard]] auto q() const {
+    constexpr int c = detail::joint_named<S, Name>();
+    if constexpr (c < 0) return T(0);  // after the diagnostic, no second error
+    else return read<S::table.nq[c]>(this->q_ + S::tree.q_offset[c]);
+  }
+  /// The named joint's rates: a T for a one-coordinate joint, else its nv rates.
+  template <fixed_string Name>
+  [[nodiscard]] auto qd() const {
+    constexpr int c = detail::joint_named<S, Name>();
+    if constexpr (c < 0) return T(0);
+    else return read<S::table.nv[c]>(this->qd_ + S::tree.v_offset[c]);
+  }
+
+ private:
+  template <int N>
+  static auto read(const T* p) {
+    if constexpr (N == 1) {
+      return p[0];
+    } else {
+      Eigen::Matrix<T, N, 1> r;
+      for (int i = 0; i < N; ++i) r[i] = p[i];
+      return r;
+    }
+  }
+};
+
+/// The joint state of scene S at (q, v).
+template <class S, class T>
+named_joint_state<T, S> state_view(const T* q, const T* v) {
+  return {{q, v, S::n_q}};
+}
+
+/// q<"elbow">(x): the named joint's coordinates in an input's state x (the
+/// form that works inside generic lambdas, where x.q<"elbow">() would need
+/// `template`).
+template <fixed_string Name, class T, class S>
+[[nodiscard]] auto q(const named_joint_state<T, S>& x) {
+  return x.template q<Name>();
+}
+/// qd<"elbow">(x): the named joint's rates.
+template <fixed_string Name, class T, class S>
+[[nodiscard]] auto qd(const named_joint_state<T, S>& x) {
+  return x.template qd<Name>();
+}
+
+}  // namespace flange

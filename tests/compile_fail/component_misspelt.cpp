@@ -1,0 +1,12 @@
+// A connection that misspells a component's name: the diagnostic suggests
+// the closest frame name.
+#include <flange/flange.hpp>
+using namespace flange;
+#ifdef FLANGE_KO
+constexpr auto c = connect<"jiont.frame_b", "mass.frame_a">;
+#else
+constexpr auto c = connect<"joint.frame_b", "mass.frame_a">;
+#endif
+auto s = scene(World<"world">{}, Revolute<"joint", axis::z>{}, Body<"mass">({.m = 1.0}),
+               connect<"world.frame_b", "joint.frame_a">, c);
+int main() {}
