@@ -1,0 +1,73 @@
+// Your own mechanism: a 3-joint spatial arm (docs/tutorial.md). Each joint is
+// driven by its own PD law, written by joint name; the links are a steel box
+// and two aluminium tubes whose mass and inertia flange computes from their
+// shape. Seven components and six connections.
+//
+//   spatial_arm                  simulate 4 s, write spatial_arm.csv, print a summary
+//   spatial_arm --equations      print the arm's equations
+//   spatial_arm --csv FILE       write the trajectory to FILE
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+
+#include <flange/flange.hpp>
+
+using namespace flange;
+
+int main(int argc, char** argv) {
+  const char* csv = "spatial_arm.csv";
+  bool equations = false;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--equations")) equations = true;
+    else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
+    else return std::cerr << "usage: spatial_arm [--equations] [--csv FILE]\n", 2;
+  }
+
+  // PD laws by joint name: targets in radians, gains per joint.
+  auto pd = [](auto joint_angle, auto joint_rate, double target, double kp, double kd) {
+    return kp * (target - joint_angle) - kd * joint_rate;
+  };
+  auto shoulder = [&](auto, const auto& x) { return pd(q<"shoulder">(x), qd<"shoulder">(x), 1.0, 60, 12); };
+  auto elbow = [&](auto, const auto& x) { return pd(q<"elbow">(x), qd<"elbow">(x), -0.8, 150, 20); };
+  auto wrist = [&](auto, const auto& x) { return pd(q<"wrist">(x), qd<"wrist">(x), 0.4, 20, 2); };
+
+  const auto arm = scene(
+      World<"world">({.g = {0, 0, -9.81}}),  //
+      revolute<"shoulder", axis::z>(shoulder), revolute<"elbow", axis::y>(elbow), revolute<"wrist", axis::y>(wrist),
+      BodyBox<"upper">({.r = {0.5, 0, 0}, .width = 0.06, .height = 0.04}),
+      BodyCylinder<"fore">({.r = {0.4, 0, 0}, .diameter = 0.05, .inner_diameter = 0.04, .density = 2700}),
+      BodyCylinder<"hand">({.r = {0.1, 0, 0}, .diameter = 0.04, .density = 2700}),
+      connect<"world.frame_b", "shoulder.frame_a">, connect<"shoulder.frame_b", "upper.frame_a">,
+      connect<"upper.frame_b", "elbow.frame_a">, connect<"elbow.frame_b", "fore.frame_a">,
+      connect<"fore.frame_b", "wrist.frame_a">, connect<"wrist.frame_b", "hand.frame_a">);
+  using Arm = decltype(arm);
+
+  if (equations) {
+    print_equations(arm, std::cout);
+    return 0;
+  }
+
+  // Start with the elbow bent down and the wrist straight; the shoulder at 0.
+  auto x = initial_state<"elbow">(arm, {.q = 0.6});
+  std::ofstream out(csv);
+  out << "t,shoulder,elbow,wrist,tip_x,tip_y,tip_z\n";
+  auto observe = record(arm, [&](const auto& s) {
+    const Vec3d tip = s.frame("hand.frame_b").r;
+    out << s.t << ',' << internal<"shoulder", "phi">(s) << ',' << internal<"elbow", "phi">(s) << ','
+        << internal<"wrist", "phi">(s) << ',' << tip.x() << ',' << tip.y() << ',' << tip.z() << '\n';
+  });
+  auto stepper = odeint::make_dense_output(1e-9, 1e-9, odeint::runge_kutta_dopri5<Arm::state_type>());
+  budget evaluations{.max_rhs_evals = 1'000'000};
+  odeint::integrate_const(stepper, checked(arm, evaluations), x, 0.0, 4.0, 0.01, observe);
+
+  const auto end = recover(arm, 4.0, x);
+  std::cout << "flange spatial arm: " << Arm::n_equations << " equations, " << Arm::n_unknowns
+            << " unknowns, 3 joints driven by PD laws read by name\n"
+            << "  link masses: upper " << arm.get<"upper">().m() << " kg, fore " << arm.get<"fore">().m()
+            << " kg, hand " << arm.get<"hand">().m() << " kg (from their shapes)\n"
+            << "  after 4 s: shoulder " << x[0] << " rad (target 1.0), elbow " << x[1] << " rad (target −0.8), wrist "
+            << x[2] << " rad (target 0.4)\n"
+            << "  largest scaled residual at the end " << scaled_residual(arm, end) << "\n";
+  return 0;
+}
