@@ -68,9 +68,7 @@ int main(int argc, char** argv) {
       0.01, record(crane, [&](const auto& sol) {
         const double theta = sol.q[1] + std::numbers::pi / 2;
         // The buffer's length s and tension f are internals of its equations.
-        const auto& y = sol.y;
-        constexpr int buffer = Crane::index_of("buffer");
-        const double len = y(Crane::slot_offset<buffer>(8)), tension = y(Crane::slot_offset<buffer>(9));
+        const double len = internal<"buffer", "s">(sol), tension = internal<"buffer", "f">(sol);
         worst_residual = std::max(worst_residual, scaled_residual(crane, sol));
         max_tension = std::max(max_tension, std::abs(tension));
         max_swing = std::max(max_swing, std::abs(theta));
