@@ -2,21 +2,23 @@
 # Installs, with apt-get, the Debian 12 packages flange needs that are missing.
 # Run as root (or with sudo). Nothing is installed when everything is there.
 #   tools/install-deps.sh            compiler, CMake, Eigen, Boost 1.81, Catch2, Google Benchmark,
-#                                    valgrind (the memcheck test)
+#                                    valgrind (the memcheck test), tinyxml2 (flange-urdf)
 #   tools/install-deps.sh --plots    also gnuplot, for docs/*.png
 #   tools/install-deps.sh --peers    also MuJoCo and Simbody, the work-precision study's peers
 #   tools/install-deps.sh --ensembles  also oneTBB, Boost.MPI and Open MPI, for parallel ensembles
+#   tools/install-deps.sh --urdf     also MuJoCo, which checks flange-urdf's scenes against the same URDF files
 # (the options may be given together.)
 set -euo pipefail
 # Boost 1.81, not Debian's default 1.74: its uBLAS compiles as C++20, which
 # keeps rosenbrock4 header-only. Installing it replaces libboost1.74-dev.
-packages=(g++ cmake make libeigen3-dev libboost1.81-dev catch2 libbenchmark-dev valgrind)
+packages=(g++ cmake make libeigen3-dev libboost1.81-dev catch2 libbenchmark-dev valgrind libtinyxml2-dev)
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(gnuplot-nox) ;;
     --peers) packages+=(libmujoco-dev libsimbody-dev) ;;
     --ensembles) packages+=(libtbb-dev libboost-mpi1.81-dev openmpi-bin) ;;
-    *) echo "install-deps: unknown option $arg (use --plots, --peers, --ensembles)" >&2; exit 2 ;;
+    --urdf) packages+=(libmujoco-dev) ;;
+    *) echo "install-deps: unknown option $arg (use --plots, --peers, --ensembles, --urdf)" >&2; exit 2 ;;
   esac
 done
 missing=()

@@ -81,6 +81,28 @@ struct joint_state {
 template <class X, class T>
 concept state_of = std::is_base_of_v<joint_state<T>, X>;
 
+/// The tag a drive shared by several joints receives: which joint asks.
+/// decltype(tag)::name is the joint's name, usable as q<decltype(tag)::name>(x).
+template <fixed_string Name>
+struct joint_tag {
+  static constexpr auto name = Name;
+};
+/// Joint Name's input from a drive shared by several joints: calls
+/// drive(joint_tag<Name>{}, t, x), resolved at compile time (the URDF
+/// scenes' make_scene(drive), tools/urdf/).
+template <fixed_string Name, class Drive>
+struct shared_drive {
+  Drive drive;
+  template <class T, class X>
+  auto operator()(const T& t, const X& x) const {
+    return drive(joint_tag<Name>{}, t, x);
+  }
+};
+template <fixed_string Name, class Drive>
+shared_drive<Name, Drive> drive_for(Drive drive) {
+  return {std::move(drive)};
+}
+
 /// The parameter slot of an input whose type is a constant (a number or a
 /// 3-vector, the default): it takes the value, or anything convertible to it,
 /// and refuses a callable with one static_assert (Refuse<F>) that says how to

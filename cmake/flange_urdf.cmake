@@ -1,0 +1,27 @@
+# flange_urdf_scene(<target> <robot.urdf> [NAMESPACE <ns>])
+#
+# Runs flange-urdf on the URDF file at build time (again whenever the file
+# changes) and makes the generated header, <ns>.hpp, includable by <target>:
+#
+#   flange_urdf_scene(my_app robots/arm.urdf NAMESPACE arm)
+#   // my_app.cpp:  #include "arm.hpp"   auto robot = arm::make_scene();
+#
+# <ns> defaults to the file's name without its extension.
+function(flange_urdf_scene target urdf)
+  cmake_parse_arguments(FU "" "NAMESPACE" "" ${ARGN})
+  get_filename_component(urdf_path "${urdf}" ABSOLUTE)
+  if(NOT FU_NAMESPACE)
+    get_filename_component(FU_NAMESPACE "${urdf}" NAME_WE)
+  endif()
+  set(dir "${CMAKE_CURRENT_BINARY_DIR}/flange_urdf/${target}")
+  set(header "${dir}/${FU_NAMESPACE}.hpp")
+  add_custom_command(
+    OUTPUT "${header}"
+    COMMAND ${CMAKE_COMMAND} -E make_directory "${dir}"
+    COMMAND $<TARGET_FILE:flange::urdf> "${urdf_path}" --namespace ${FU_NAMESPACE} -o "${header}"
+    DEPENDS "${urdf_path}" $<TARGET_FILE:flange::urdf>
+    COMMENT "flange-urdf ${urdf} -> ${FU_NAMESPACE}.hpp"
+    VERBATIM)
+  target_sources(${target} PRIVATE "${header}")
+  target_include_directories(${target} PRIVATE "${dir}")
+endfunction()

@@ -1,0 +1,18 @@
+# Runs flange-urdf on a bad URDF: it must fail, name the element and its
+# line (EXPECT), and write nothing.
+set(out "${WORK}/out.hpp")
+file(REMOVE "${out}")
+execute_process(COMMAND ${TOOL} ${URDF} -o ${out} RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE o)
+if(rc EQUAL 0)
+  message(FATAL_ERROR "flange-urdf accepted a bad URDF")
+endif()
+foreach(e IN LISTS EXPECT)
+  string(FIND "${err}" "${e}" pos)
+  if(pos EQUAL -1)
+    message(FATAL_ERROR "the error lacks\n  ${e}\nit was:\n${err}")
+  endif()
+endforeach()
+if(EXISTS "${out}")
+  message(FATAL_ERROR "flange-urdf wrote ${out} although it failed")
+endif()
+message(STATUS "refused: ${err}")

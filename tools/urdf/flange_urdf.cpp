@@ -1,0 +1,68 @@
+// flange-urdf: a URDF robot as a flange scene header.
+//
+//   flange-urdf robot.urdf [--namespace NAME] [-o robot_scene.hpp]
+//
+// Writes the header (to stdout without -o); prints what flange does not model
+// (limits, mimic joints, transmissions, …) to stderr. A bad URDF (an unknown
+// joint type, a link with two parents, a cycle, a missing mass, a number
+// that is not finite, …) is an error naming the element and its line, and
+// nothing is written. docs/urdf.md has the conventions.
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "generate.hpp"
+
+int main(int argc, char** argv) {
+  std::string in, out, ns;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-o" && i + 1 < argc) out = argv[++i];
+    else if (a == "--namespace" && i + 1 < argc) ns = argv[++i];
+    else if (!a.empty() && a[0] != '-' && in.empty()) in = a;
+    else {
+      std::cerr << "usage: flange-urdf robot.urdf [--namespace NAME] [-o FILE]\n";
+      return 2;
+    }
+  }
+  if (in.empty()) {
+    std::cerr << "usage: flange-urdf robot.urdf [--namespace NAME] [-o FILE]\n";
+    return 2;
+  }
+  std::ifstream f(in);
+  if (!f) {
+    std::cerr << "flange-urdf: cannot read " << in << '\n';
+    return 1;
+  }
+  std::stringstream text;
+  text << f.rdbuf();
+  try {
+    const auto robot = flange_urdf::parse(in, text.str());
+    if (ns.empty()) {
+      ns = robot.name;
+      for (char& c : ns)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      if (ns.empty() || std::isdigit(static_cast<unsigned char>(ns[0]))) ns = "robot_" + ns;
+    }
+    std::ostringstream header;
+    const auto notes = flange_urdf::generate(robot, in, ns, header);
+    for (const auto& n : notes) std::cerr << "flange-urdf: note: " << n << '\n';
+    if (out.empty()) {
+      std::cout << header.str();
+    } else {
+      std::ofstream o(out);
+      o << header.str();
+      if (!o) {
+        std::cerr << "flange-urdf: cannot write " << out << '\n';
+        return 1;
+      }
+    }
+  } catch (const flange_urdf::urdf_error& e) {
+    std::cerr << "flange-urdf: error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "flange-urdf: error: " << in << ": " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}
