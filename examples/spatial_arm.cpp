@@ -6,22 +6,27 @@
 //   spatial_arm                  simulate 4 s, write spatial_arm.csv, print a summary
 //   spatial_arm --equations      print the arm's equations
 //   spatial_arm --csv FILE       write the trajectory to FILE
+//   spatial_arm --html FILE      also write a page that plays the motion in 3-D (flange/viewer/,
+//                                three.js from tools/install-deps.sh --viewer)
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iostream>
 
 #include <flange/flange.hpp>
+#include <flange/viewer/recording.hpp>
 
 using namespace flange;
 
 int main(int argc, char** argv) {
   const char* csv = "spatial_arm.csv";
+  const char* html = nullptr;
   bool equations = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--equations")) equations = true;
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
-    else return std::cerr << "usage: spatial_arm [--equations] [--csv FILE]\n", 2;
+    else if (!std::strcmp(argv[i], "--html") && i + 1 < argc) html = argv[++i];
+    else return std::cerr << "usage: spatial_arm [--equations] [--csv FILE] [--html FILE]\n", 2;
   }
 
   // PD laws by joint name: targets in radians, gains per joint.
@@ -52,7 +57,9 @@ int main(int argc, char** argv) {
   auto x = initial_state<"elbow">(arm, {.q = 0.6});
   std::ofstream out(csv);
   out << "t,shoulder,elbow,wrist,tip_x,tip_y,tip_z\n";
+  viewer::recording page(arm);  // plots the three joint angles under the 3-D view
   auto observe = record(arm, [&](const auto& s) {
+    page.add(s);
     const Vec3d tip = s.frame("hand.frame_b").r;
     out << s.t << ',' << internal<"shoulder", "phi">(s) << ',' << internal<"elbow", "phi">(s) << ','
         << internal<"wrist", "phi">(s) << ',' << tip.x() << ',' << tip.y() << ',' << tip.z() << '\n';
@@ -62,6 +69,10 @@ int main(int argc, char** argv) {
   odeint::integrate_const(stepper, checked(arm, evaluations), x, 0.0, 4.0, 0.01, observe);
 
   const auto end = recover(arm, 4.0, x);
+  if (html) {
+    page.write_html(html, viewer::three_js(), "flange: a 3-joint spatial arm");
+    std::cout << "wrote " << html << " (" << page.samples() << " samples)\n";
+  }
   std::cout << "flange spatial arm: " << Arm::n_equations << " equations, " << Arm::n_unknowns
             << " unknowns, 3 joints driven by PD laws read by name\n"
             << "  link masses: upper " << arm.get<"upper">().m() << " kg, fore " << arm.get<"fore">().m()

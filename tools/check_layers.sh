@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fails when a header includes one from a higher layer (docs/architecture.md):
 #   0 detail/, errors.hpp   1 math/   2 core/   3 components/, joints/, forces/
-#   4 scene/   5 equations/   6 dynamics/   7 simulate/   8 models/, study/, ensemble/   9 flange.hpp
+#   4 scene/   5 equations/   6 dynamics/   7 simulate/   8 models/, study/, ensemble/, viewer/   9 flange.hpp
 # A header may include its own layer and the layers below it.
 #   tools/check_layers.sh [include/flange]
 set -euo pipefail
@@ -16,7 +16,7 @@ rank() {
     equations/*) echo 5 ;;
     dynamics/*) echo 6 ;;
     simulate/*) echo 7 ;;
-    models/*|study/*|ensemble/*) echo 8 ;;
+    models/*|study/*|ensemble/*|viewer/*) echo 8 ;;
     flange.hpp) echo 9 ;;
     *) echo "unknown" ;;
   esac

@@ -7,8 +7,11 @@
 #   tools/install-deps.sh --peers    also MuJoCo and Simbody, the work-precision study's peers
 #   tools/install-deps.sh --ensembles  also oneTBB, Boost.MPI and Open MPI, for parallel ensembles
 #   tools/install-deps.sh --urdf     also MuJoCo, which checks flange-urdf's scenes against the same URDF files
+#   tools/install-deps.sh --viewer   also headless Chromium and npm, and three.js from npm into
+#                                    tools/viewer/node_modules (the trajectory pages inline it)
 # (the options may be given together.)
 set -euo pipefail
+viewer=0
 # Boost 1.81, not Debian's default 1.74: its uBLAS compiles as C++20, which
 # keeps rosenbrock4 header-only. Installing it replaces libboost1.74-dev.
 packages=(g++ cmake make libeigen3-dev libboost1.81-dev catch2 libbenchmark-dev valgrind libtinyxml2-dev)
@@ -18,7 +21,12 @@ for arg in "$@"; do
     --peers) packages+=(libmujoco-dev libsimbody-dev) ;;
     --ensembles) packages+=(libtbb-dev libboost-mpi1.81-dev openmpi-bin) ;;
     --urdf) packages+=(libmujoco-dev) ;;
-    *) echo "install-deps: unknown option $arg (use --plots, --peers, --ensembles, --urdf)" >&2; exit 2 ;;
+    --viewer)
+      viewer=1
+      packages+=(chromium-headless-shell)
+      command -v npm >/dev/null || packages+=(npm)
+      ;;
+    *) echo "install-deps: unknown option $arg (use --plots, --peers, --ensembles, --urdf, --viewer)" >&2; exit 2 ;;
   esac
 done
 missing=()
@@ -31,4 +39,9 @@ if ((${#missing[@]})); then
   if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+# three.js for the trajectory viewer, pinned in tools/viewer/package.json.
+if ((viewer)) && [[ ! -f "$(dirname "$0")/viewer/node_modules/three/build/three.min.js" ]]; then
+  echo "install-deps: npm install three.js into tools/viewer/node_modules"
+  (cd "$(dirname "$0")/viewer" && npm install --silent --no-audit --no-fund --no-package-lock)
 fi
