@@ -4,6 +4,7 @@
 //   robot_arm                   simulate, write robot_arm.csv, print a summary
 //   robot_arm --equations       print the arm's 106 equations, as the paper lists them
 //   robot_arm --csv FILE        write the trajectory to FILE
+//   robot_arm --html FILE       also write a page that plays the swing-up in 3-D (flange/viewer/)
 //
 // The CSV has t, θ (from the downward vertical, as the paper's final equation),
 // ω = θ̇, the motor torque M_z, the energy, the cut torque the joint passes
@@ -16,17 +17,20 @@
 #include <vector>
 
 #include <flange/flange.hpp>
+#include <flange/viewer/recording.hpp>
 
 using namespace flange;
 
 int main(int argc, char** argv) {
   const char* csv = "robot_arm.csv";
+  const char* html = nullptr;
   bool equations = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--equations")) equations = true;
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
+    else if (!std::strcmp(argv[i], "--html") && i + 1 < argc) html = argv[++i];
     else {
-      std::cerr << "usage: robot_arm [--equations] [--csv FILE]\n";
+      std::cerr << "usage: robot_arm [--equations] [--csv FILE] [--html FILE]\n";
       return 2;
     }
   }
@@ -57,7 +61,12 @@ int main(int argc, char** argv) {
   const double e0 = recover(arm, 0.0, x).energy();
   std::vector<double> power;  // the motor's power M_z·φ̇ at every sample
   double max_bearing = 0;
+  viewer::recording page(arm);
+  page.plot("theta [rad]", [](const auto& s) { return s.q[0] + std::numbers::pi / 2; });
+  page.plot("M_z [N m]", [&](const auto& s) { return motor(s.t, {s.q.data(), s.v.data(), 1}).z(); });
+  page.reserve(3001);
   auto observe = record(arm, [&](const auto& s) {
+    page.add(s);
     const double Mz = motor(s.t, {s.q.data(), s.v.data(), 1}).z();
     power.push_back(Mz * s.v[0]);
     const double bearing = s.cut_at("joint.frame_b").f.norm();
@@ -68,6 +77,7 @@ int main(int argc, char** argv) {
   auto stepper = odeint::make_dense_output(1e-10, 1e-10, odeint::runge_kutta_dopri5<Arm::state_type>());
   const std::size_t steps = odeint::integrate_const(stepper, arm, x, 0.0, 3.0, 0.001, observe);
   const double e1 = recover(arm, 3.0, x).energy();
+  if (html) page.write_html(html, viewer::three_js(), "flange: the paper's robot arm");
   // The motor's work by Simpson's rule on the 1 ms samples (an even number of
   // intervals): its O(h⁴) error is far below the balance printed.
   double work = power.front() + power.back();
