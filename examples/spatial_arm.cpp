@@ -16,6 +16,8 @@
 #include <flange/flange.hpp>
 #include <flange/viewer/recording.hpp>
 
+#include "spatial_arm.hpp"
+
 using namespace flange;
 
 int main(int argc, char** argv) {
@@ -29,23 +31,8 @@ int main(int argc, char** argv) {
     else return std::cerr << "usage: spatial_arm [--equations] [--csv FILE] [--html FILE]\n", 2;
   }
 
-  // PD laws by joint name: targets in radians, gains per joint.
-  auto pd = [](auto joint_angle, auto joint_rate, double target, double kp, double kd) {
-    return kp * (target - joint_angle) - kd * joint_rate;
-  };
-  auto shoulder = [&](auto, const auto& x) { return pd(q<"shoulder">(x), qd<"shoulder">(x), 1.0, 60, 12); };
-  auto elbow = [&](auto, const auto& x) { return pd(q<"elbow">(x), qd<"elbow">(x), -0.8, 150, 20); };
-  auto wrist = [&](auto, const auto& x) { return pd(q<"wrist">(x), qd<"wrist">(x), 0.4, 20, 2); };
-
-  const auto arm = scene(
-      World<"world">({.g = {0, 0, -9.81}}),  //
-      revolute<"shoulder", axis::z>(shoulder), revolute<"elbow", axis::y>(elbow), revolute<"wrist", axis::y>(wrist),
-      BodyBox<"upper">({.r = {0.5, 0, 0}, .width = 0.06, .height = 0.04}),
-      BodyCylinder<"fore">({.r = {0.4, 0, 0}, .diameter = 0.05, .inner_diameter = 0.04, .density = 2700}),
-      BodyCylinder<"hand">({.r = {0.1, 0, 0}, .diameter = 0.04, .density = 2700}),
-      connect<"world.frame_b", "shoulder.frame_a">, connect<"shoulder.frame_b", "upper.frame_a">,
-      connect<"upper.frame_b", "elbow.frame_a">, connect<"elbow.frame_b", "fore.frame_a">,
-      connect<"fore.frame_b", "wrist.frame_a">, connect<"wrist.frame_b", "hand.frame_a">);
+  // The arm and its PD laws by joint name (examples/spatial_arm.hpp).
+  const auto arm = spatial_arm::make_scene();
   using Arm = decltype(arm);
 
   if (equations) {

@@ -12,6 +12,7 @@
 
 #include <flange/flange.hpp>
 
+#include "spatial_arm.hpp"       // the hand-written arm and its gains
 #include "spatial_arm_urdf.hpp"  // generated: spatial_arm_urdf::make_scene()
 
 using namespace flange;
@@ -23,15 +24,11 @@ int main(int argc, char** argv) {
     else return std::cerr << "usage: urdf_arm [--equations]\n", 2;
   }
 
-  // One PD law for every joint; the joint's name picks its target and gains.
-  struct gains {
-    double target, kp, kd;
-  };
+  // One PD law for every joint; the joint's name picks its target and gains
+  // (the same gains as the hand-written arm's, examples/spatial_arm.hpp).
   auto pd = [](auto joint, auto, const auto& x) {
     constexpr auto name = decltype(joint)::name;
-    constexpr gains g = name.view() == "shoulder" ? gains{1.0, 60, 12}
-                        : name.view() == "elbow"  ? gains{-0.8, 150, 20}
-                                                  : gains{0.4, 20, 2};
+    constexpr spatial_arm::pd_gains g = spatial_arm::gains(name.view());
     return g.kp * (g.target - q<name>(x)) - g.kd * qd<name>(x);
   };
   const auto arm = spatial_arm_urdf::make_scene(pd);
@@ -41,19 +38,8 @@ int main(int argc, char** argv) {
     return 0;
   }
 
-  // The hand-written arm (examples/spatial_arm.cpp), for comparison.
-  auto shoulder = [](auto, const auto& x) { return 60.0 * (1.0 - q<"shoulder">(x)) - 12.0 * qd<"shoulder">(x); };
-  auto elbow = [](auto, const auto& x) { return 150.0 * (-0.8 - q<"elbow">(x)) - 20.0 * qd<"elbow">(x); };
-  auto wrist = [](auto, const auto& x) { return 20.0 * (0.4 - q<"wrist">(x)) - 2.0 * qd<"wrist">(x); };
-  const auto by_hand = scene(
-      World<"world">({.g = {0, 0, -9.81}}),  //
-      revolute<"shoulder", axis::z>(shoulder), revolute<"elbow", axis::y>(elbow), revolute<"wrist", axis::y>(wrist),
-      BodyBox<"upper">({.r = {0.5, 0, 0}, .width = 0.06, .height = 0.04}),
-      BodyCylinder<"fore">({.r = {0.4, 0, 0}, .diameter = 0.05, .inner_diameter = 0.04, .density = 2700}),
-      BodyCylinder<"hand">({.r = {0.1, 0, 0}, .diameter = 0.04, .density = 2700}),
-      connect<"world.frame_b", "shoulder.frame_a">, connect<"shoulder.frame_b", "upper.frame_a">,
-      connect<"upper.frame_b", "elbow.frame_a">, connect<"elbow.frame_b", "fore.frame_a">,
-      connect<"fore.frame_b", "wrist.frame_a">, connect<"wrist.frame_b", "hand.frame_a">);
+  // The hand-written arm (examples/spatial_arm.hpp), for comparison.
+  const auto by_hand = spatial_arm::make_scene();
 
   auto x = initial_state<"elbow">(arm, {.q = 0.6});
   auto y = initial_state<"elbow">(by_hand, {.q = 0.6});
@@ -67,7 +53,8 @@ int main(int argc, char** argv) {
   std::cout << "flange URDF arm: " << Arm::n_equations << " equations, " << Arm::n_unknowns
             << " unknowns, from examples/urdf/spatial_arm.urdf (3 joints, one shared PD drive)\n"
             << "  after 4 s: shoulder " << x[0] << ", elbow " << x[1] << ", wrist " << x[2] << " rad\n"
-            << "  largest difference from the hand-written arm with BodyBox/BodyCylinder links: " << diff << "\n"
+            << "  largest difference from the hand-written arm with BodyBox/BodyCylinder links: " << diff
+            << (diff <= 1e-8 ? " (agree)" : " (DISAGREE)") << "\n"
             << "  largest scaled residual at the end " << scaled_residual(arm, recover(arm, 4.0, x)) << "\n";
   return diff <= 1e-8 ? 0 : 1;
 }

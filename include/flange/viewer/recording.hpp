@@ -66,16 +66,13 @@ class recording {
  public:
   using solution = dae_solution<S, double>;
   explicit recording(const S& scene) : scene_(scene) {
+    // The default plot: every joint coordinate, named by its joint.
     for (int c = 0; c < S::n_components; ++c)
       for (int k = 0; k < S::table.nq[c]; ++k) {
         std::string n(S::table.names[c]);  // appended: GCC 12 warns wrongly on a + b (bug 105329)
         if (S::table.nq[c] > 1) n.append("[").append(std::to_string(k)).append("]");
-        names_.push_back(std::move(n));
-      }
-    for (int c = 0, i = 0; c < S::n_components; ++c)
-      for (int k = 0; k < S::table.nq[c]; ++k, ++i) {
         const int q = S::tree.q_offset[c] + k;
-        series_.push_back({names_[i], [q](const solution& s) { return s.q[q]; }, {}});
+        series_.push_back({std::move(n), [q](const solution& s) { return s.q[q]; }, {}});
       }
   }
 
@@ -158,21 +155,22 @@ class recording {
       o << "]}";
       first = false;
     };
+    // A body without a shape: a sphere at its centre of mass, 0.05 m for 1 kg, growing as m^(1/3).
+    auto sphere = [&](std::string_view name, int frame, double m, const Vec3d& c) {
+      item("sphere", name, frame, {c.x(), c.y(), c.z(), 0.05 * std::cbrt(std::max(m, 1e-3))});
+    };
     flange::detail::for_each_component(scene_, [&](auto i, const auto& c) {
       using C = std::remove_cvref_t<decltype(c)>;
       constexpr int f = S::table.frame_base[decltype(i)::value];
       if constexpr (C::kind == role::body) {
-        // A sphere at the centre of mass: 0.05 m for 1 kg, growing as m^(1/3).
-        const double radius = 0.05 * std::cbrt(std::max(c.m(), 1e-3));
-        item("sphere", C::name.view(), f, {c.r_cm().x(), c.r_cm().y(), c.r_cm().z(), radius});
+        sphere(C::name.view(), f, c.m(), c.r_cm());
       } else if constexpr (carries_body<C>) {
         // A shaped body: its mesh along r, centred at r/2, turned to its axes.
         const Mat3d T = flange::detail::shape_axes(c.r().norm() > 0 ? c.r() : Vec3d::UnitX(), Vec3d(0, 1, 0));
         const Eigen::Quaterniond q = detail::quat(T.transpose());
         const Vec3d m = c.r() / 2, s = c.size();
         if constexpr (std::is_same_v<typename C::shape_type, shape_kind::none>) {
-          const double radius = 0.05 * std::cbrt(std::max(c.m(), 1e-3));
-          item("sphere", C::name.view(), f, {c.r_cm().x(), c.r_cm().y(), c.r_cm().z(), radius});
+          sphere(C::name.view(), f, c.m(), c.r_cm());
         } else {
           const std::string kind = std::is_same_v<typename C::shape_type, shape_kind::box> ? "box" : "cylinder";
           item(kind, C::name.view(), f, {m.x(), m.y(), m.z(), q.x(), q.y(), q.z(), q.w(), s.x(), s.y(), s.z()});
@@ -318,7 +316,6 @@ requestAnimationFrame(tick);
 )JS";
 
   const S& scene_;
-  std::vector<std::string> names_;
   std::vector<series> series_;
   bool custom_ = false;
   std::vector<double> times_, poses_;
