@@ -22,6 +22,8 @@
 #include <flange/simulate/checked.hpp>
 #include <flange/simulate/jacobian.hpp>
 #include <flange/simulate/odeint.hpp>
+#include <flange/simulate/projected.hpp>
+#include <flange/models/linkages.hpp>
 
 #include "random_params.hpp"
 
@@ -161,6 +163,20 @@ TEST_CASE("the derivative allocates nothing: chains, a branched tree, line force
             accelerations_articulated_body(chain, 0.0, y.data(), y.data() + 6, dy.data() + 6);
             accelerations_articulated_body(tree, 0.0, w.data(), w.data() + tree_shape.n, dw.data() + tree_shape.n);
           }
+        }) == 0);
+}
+
+TEST_CASE("a loop scene's derivative and its projected stepping allocate nothing") {
+  const auto fb = models::fourbar({});
+  using X = decltype(fb)::state_type;
+  X x{0.3, 1.3, 2.4, 5.0, 0, 0}, dx;
+  close_loops<"crank_pivot">(fb, x);
+  auto dopri = odeint::make_controlled(1e-10, 1e-10, odeint::runge_kutta_dopri5<X>());
+  integrate_projected(dopri, fb, x, 0.0, 0.01, 1e-3);  // the stepper sizes its buffers
+  CHECK(count_allocations([&] {
+          for (int i = 0; i < 100; ++i) fb(x, dx, 0.0);
+          integrate_projected(dopri, fb, x, 0.01, 0.5, 1e-3);
+          normalize(fb, x);
         }) == 0);
 }
 

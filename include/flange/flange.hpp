@@ -29,5 +29,7 @@
 #include "flange/models/gimbal.hpp"
 #include "flange/models/legged.hpp"
 #include "flange/models/tree.hpp"
+#include "flange/models/linkages.hpp"
 #include "flange/simulate/jacobian.hpp"
 #include "flange/simulate/checked.hpp"
+#include "flange/simulate/projected.hpp"

@@ -1,11 +1,13 @@
-// A FixedTranslation from the arm's end back to the World closes a loop. The
-// residual of such a scene exists; its generated derivative does not.
+// Two FixedTranslations from the World's frame back to it close a loop of
+// rigid components only: no joint in it can be cut, and nothing can move.
 #include <flange/flange.hpp>
 using namespace flange;
 auto s = scene(World<"world">{}, Revolute<"joint", axis::z>{}, FixedTranslation<"rod">({.d = {1, 0, 0}}),
-               Body<"mass">({.m = 1.0}), FixedTranslation<"back">({.d = {-1, 0, 0}}),
+               Body<"mass">({.m = 1.0}), FixedTranslation<"out">({.d = {1, 0, 0}}),
+               FixedTranslation<"back">({.d = {-1, 0, 0}}),
                connect<"world.frame_b", "joint.frame_a">, connect<"joint.frame_b", "rod.frame_a">,
-               connect<"rod.frame_b", "mass.frame_a">, connect<"rod.frame_b", "back.frame_a">
+               connect<"rod.frame_b", "mass.frame_a">, connect<"world.frame_b", "out.frame_a">,
+               connect<"out.frame_b", "back.frame_a">
 #ifdef FLANGE_KO
                , connect<"back.frame_b", "world.frame_b">
 #endif

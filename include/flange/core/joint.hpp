@@ -20,7 +20,10 @@
 //   planar_normal(), moves_in_plane(K)  what planar arithmetic needs to know
 //
 // and optionally generalized_force(t, x, tau) (inputs and axis laws on its
-// coordinates) and elastic_energy(q). scene/joint_check.hpp turns a missing
+// coordinates), elastic_energy(q), and as_cut: what it leaves free when it
+// closes a loop (cut_freedom below; a joint without it cannot be cut), with
+// cut_state(R, p, w, ṗ, q, v): its coordinates and rates from its frames'
+// relative pose and motion, for recovering a cut joint's internals. scene/joint_check.hpp turns a missing
 // member into one static_assert naming the joint and the member.
 //
 // The motion object m at q, for the link behind the joint (the child):
@@ -96,6 +99,23 @@ template <class T>
 wrench<T> flows_b_from_a(const pose<T>& x, const wrench<T>& a) {
   return {-(x.R * a.f), x.R * (x.p.cross(a.f) - a.n)};
 }
+
+/// What a cut joint (one that closes a kinematic loop, dynamics/loops.hpp)
+/// leaves free between its frames: 0, 1 (about its axis n()) or 3 relative
+/// rotations, and 0 or 1 (along n()) relative translations. The loop's
+/// constraints lock the rest.
+struct cut_freedom {
+  int rotations = 0;
+  int translations = 0;
+};
+
+namespace detail {
+/// Whether a joint has a generalized force of its own (an input or an axis law).
+template <class J>
+concept has_generalized_force = requires(const J& j, const double* p, double* tau, const joint_state<double>& x) {
+  j.generalized_force(0.0, x, p, p, tau);
+};
+}  // namespace detail
 
 /// The variables a joint writes (write_internals) receive their value and
 /// rate through set(i, value, rate), with value a scalar, a Vec3 or a Mat3.

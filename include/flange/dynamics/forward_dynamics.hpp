@@ -15,6 +15,7 @@
 
 #include "flange/dynamics/external.hpp"
 #include "flange/dynamics/ldlt.hpp"
+#include "flange/dynamics/loops.hpp"
 #include "flange/dynamics/mass_matrix.hpp"
 #include "flange/dynamics/newton_euler.hpp"
 
@@ -25,10 +26,6 @@ namespace detail {
 /// Does any joint of the scene have a generalized force of its own (an input
 /// or an axis law)? If none does, τ is zero by the scene's type and the
 /// derivative computes −b directly.
-template <class J>
-concept has_generalized_force = requires(const J& j, const double* p, double* tau, const joint_state<double>& x) {
-  j.generalized_force(0.0, x, p, p, tau);
-};
 template <class S>
 constexpr bool has_joint_forces() {
   return []<int... L>(std::integer_sequence<int, L...>) {
@@ -43,7 +40,7 @@ void joint_forces(const S& scene, const T& t, const state_of<T> auto& x, T* tau)
   for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
     using LI = link_info<S, decltype(l)::value>;
     const auto& j = scene.template component<LI::joint>();
-    if constexpr (requires { j.generalized_force(t, x, x.q_, x.qd_, tau); })
+    if constexpr (has_generalized_force<typename LI::joint_type>)
       j.generalized_force(t, x, x.q_ + LI::q, x.qd_ + LI::v, tau + LI::v);
   });
 }
@@ -78,13 +75,17 @@ template <class S, class T>
 /// the spatial ones the force elements' pose pass needs: the same tuple in
 /// the spatial algebra, a second one only for a planar scene with line or
 /// world forces.
+template <class S>
+constexpr bool needs_poses() {
+  return has_motion_forces<S>() || has_loops<S>;
+}
 template <class A, class S, class T>
 [[gnu::always_inline]] inline auto algebra_motions(const S& scene, const T* q) {
-  return link_motions<A, T, has_motion_forces<S>()>(scene, q);
+  return link_motions<A, T, needs_poses<S>()>(scene, q);
 }
 template <class A, class S, class T, class M>
 [[gnu::always_inline]] inline decltype(auto) pose_motions(const S& scene, const T*, const M& motions) {
-  if constexpr (A::planar && has_motion_forces<S>()) return spatial_offsets<T>(scene, motions);
+  if constexpr (A::planar && needs_poses<S>()) return spatial_offsets<T>(scene, motions);
   else return (motions);
 }
 
@@ -92,7 +93,7 @@ template <class A, class S, class T, class M>
 /// caller: a call would pass every link's motion through memory.
 template <class A, class S, class T, class M, class PM>
 [[gnu::always_inline]] inline void solve_accelerations(const S& scene, const T& t, const T* q, const T* v, T* vdot,
-                                                      const M& motions, const PM& pose) {
+                                                      const M& motions, const PM& pose, T* lambda = nullptr) {
   constexpr int N = S::n_v;
   const auto x = state_view<S>(q, v);
   link_loads<S, T> n_ext, f_ext;
@@ -108,8 +109,17 @@ template <class A, class S, class T, class M, class PM>
   }
   Eigen::Matrix<T, N, N> Mm;
   mass_matrix<A>(scene, motions, Mm, scale.data());
-  if (const auto pivot = solve_spd<N>(Mm, r.data(), vdot, scale.data()); pivot.index >= 0) [[unlikely]]
-    singular_mass_matrix<S>(pivot, t, q, v);
+  if constexpr (has_loops<S>) {
+    ldlt_pivots<N, T> f;
+    if (const auto pivot = ldlt_factor<N>(Mm, f, scale.data()); pivot.index >= 0) [[unlikely]]
+      singular_mass_matrix<S>(pivot, t, q, v);
+    std::array<T, N> y;
+    ldlt_solve<N>(Mm, f, r.data(), y.data());
+    constrained_accelerations(scene, pose, Mm, f, v, y.data(), vdot, lambda);
+  } else {
+    if (const auto pivot = solve_spd<N>(Mm, r.data(), vdot, scale.data()); pivot.index >= 0) [[unlikely]]
+      singular_mass_matrix<S>(pivot, t, q, v);
+  }
 }
 
 }  // namespace detail
@@ -119,6 +129,15 @@ template <class A, class S, class T>
 void accelerations_in(const S& scene, const T& t, const T* q, const T* v, T* vdot) {
   const auto motions = detail::algebra_motions<A>(scene, q);
   detail::solve_accelerations<A>(scene, t, q, v, vdot, motions, detail::pose_motions<A>(scene, q, motions));
+}
+
+/// v̇ at (t, q, v) and the loops' constraint forces λ (dynamics/loops.hpp),
+/// for a scene with loops.
+template <class S, class T>
+void accelerations_and_constraint_forces(const S& scene, const T& t, const T* q, const T* v, T* vdot, T* lambda) {
+  using A = algebra_t<S>;
+  const auto motions = detail::algebra_motions<A>(scene, q);
+  detail::solve_accelerations<A>(scene, t, q, v, vdot, motions, detail::pose_motions<A>(scene, q, motions), lambda);
 }
 
 /// v̇ at (t, q, v) by the algorithm the scene's type calls for.

@@ -31,20 +31,25 @@ struct pivot_report {
   T d{}, scale{};
 };
 
-/// Solves M·a = r for a symmetric positive-definite M by an unrolled LDLᵀ
-/// factorisation (no square roots). Stops at the first pivot d_j that is not
-/// above pivot_tolerance·scale[j] (a joint that moves nothing with inertia,
-/// or whose motion repeats other joints') and reports it.
-/// Always inlined: for a scene's small systems the call would cost more than
-/// a 2×2 solve (the crane: 243 → 222 instructions per derivative).
+/// The LDLᵀ factors of a symmetric positive-definite M, computed in place:
+/// L below M's diagonal, 1/D here. Factor once, solve for several
+/// right-hand sides (a loop scene's M⁻¹·Gᵀ, dynamics/loops.hpp).
+template <int N, class T>
+struct ldlt_pivots {
+  std::array<T, N> inv_d;
+};
+
+/// Factors M = L·D·Lᵀ (no square roots). Stops at the first pivot d_j that
+/// is not above pivot_tolerance·scale[j] (a joint that moves nothing with
+/// inertia, or whose motion repeats other joints') and reports it.
 template <int N, class T, class MM>
-[[gnu::always_inline]] inline pivot_report<T> solve_spd(MM& M, const T* r, T* a, const T* scale) {
+[[gnu::always_inline]] inline pivot_report<T> ldlt_factor(MM& M, ldlt_pivots<N, T>& f, const T* scale) {
   // Column by column: with v_k = L(j, k)·d_k for the row j in hand,
   //   d_j = M(j, j) − Σ_k L(j, k)·v_k,   L(i, j) = (M(i, j) − Σ_k L(i, k)·v_k) / d_j,
   // so each product L·D is formed once. The loop bounds are constants: the
   // compiler unrolls them into straight-line code.
   constexpr double tol = pivot_tolerance<N, T>();
-  std::array<T, N> d, inv_d;
+  std::array<T, N> d;
 #pragma GCC unroll 16
   for (int j = 0; j < N; ++j) {
     std::array<T, N> v;
@@ -57,15 +62,21 @@ template <int N, class T, class MM>
     if (!(dj > T(tol) * scale[j])) [[unlikely]]
       return {j, dj, scale[j]};
     d[j] = dj;
-    inv_d[j] = T(1) / dj;
+    f.inv_d[j] = T(1) / dj;
 #pragma GCC unroll 16
     for (int i = j + 1; i < N; ++i) {
       T x = M(i, j);
 #pragma GCC unroll 16
       for (int k = 0; k < j; ++k) x -= M(i, k) * v[k];
-      M(i, j) = x * inv_d[j];  // L(i, j), stored below the diagonal
+      M(i, j) = x * f.inv_d[j];  // L(i, j), stored below the diagonal
     }
   }
+  return {};
+}
+
+/// a = M⁻¹·r from the factors of ldlt_factor (r and a may be one array).
+template <int N, class T, class MM>
+[[gnu::always_inline]] inline void ldlt_solve(const MM& M, const ldlt_pivots<N, T>& f, const T* r, T* a) {
 #pragma GCC unroll 16
   for (int i = 0; i < N; ++i) {
     T x = r[i];
@@ -75,11 +86,44 @@ template <int N, class T, class MM>
   }
 #pragma GCC unroll 16
   for (int i = N - 1; i >= 0; --i) {
-    T x = a[i] * inv_d[i];
+    T x = a[i] * f.inv_d[i];
 #pragma GCC unroll 16
     for (int k = i + 1; k < N; ++k) x -= M(k, i) * a[k];
     a[i] = x;
   }
+}
+
+/// With M = W·Wᵀ, W = L·√D: a = W⁻¹·r (forward) and a = W⁻ᵀ·r (backward),
+/// the halves of a solve (a loop scene's constraint solve, loops.hpp).
+/// sqrt_inv_d holds 1/√d_j.
+template <int N, class T, class MM>
+inline void ldlt_forward_half(const MM& M, const std::array<T, N>& sqrt_inv_d, const T* r, T* a) {
+  for (int i = 0; i < N; ++i) {
+    T x = r[i];
+    for (int k = 0; k < i; ++k) x -= M(i, k) * a[k];
+    a[i] = x;
+  }
+  for (int i = 0; i < N; ++i) a[i] *= sqrt_inv_d[i];
+}
+template <int N, class T, class MM>
+inline void ldlt_backward_half(const MM& M, const std::array<T, N>& sqrt_inv_d, const T* r, T* a) {
+  for (int i = N - 1; i >= 0; --i) {
+    T x = r[i] * sqrt_inv_d[i];
+    for (int k = i + 1; k < N; ++k) x -= M(k, i) * a[k];
+    a[i] = x;
+  }
+}
+
+/// Solves M·a = r for a symmetric positive-definite M by an unrolled LDLᵀ,
+/// reporting a failed pivot (ldlt_factor) instead of solving.
+/// Always inlined: for a scene's small systems the call would cost more than
+/// a 2×2 solve (the crane: 243 → 222 instructions per derivative).
+template <int N, class T, class MM>
+[[gnu::always_inline]] inline pivot_report<T> solve_spd(MM& M, const T* r, T* a, const T* scale) {
+  ldlt_pivots<N, T> f;
+  if (const auto p = ldlt_factor<N>(M, f, scale); p.index >= 0) [[unlikely]]
+    return p;
+  ldlt_solve<N>(M, f, r, a);
   return {};
 }
 

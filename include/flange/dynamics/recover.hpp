@@ -201,7 +201,10 @@ template <class S, class T = double, class State>
   sol.t = t;
   for (int i = 0; i < S::n_q; ++i) sol.q[i] = x[i];
   for (int i = 0; i < S::n_v; ++i) sol.v[i] = x[S::n_q + i];
-  accelerations(scene, t, sol.q.data(), sol.v.data(), sol.vdot.data());
+  std::array<T, detail::n_constraints<S>()> lambda{};
+  if constexpr (detail::has_loops<S>)
+    accelerations_and_constraint_forces(scene, t, sol.q.data(), sol.v.data(), sol.vdot.data(), lambda.data());
+  else accelerations(scene, t, sol.q.data(), sol.v.data(), sol.vdot.data());
   const auto js = state_view<S>(sol.q.data(), sol.v.data());
   const Vec3<T> g = scene.gravity().template cast<T>();
 
@@ -250,6 +253,28 @@ template <class S, class T = double, class State>
       }
     }
   });
+  // Cut joints: the constraint forces λ act on their two frames, each row
+  // with its coefficients on the frames' motions (dynamics/loops.hpp).
+  if constexpr (detail::has_loops<S>) {
+    const auto lt = detail::loop_kinematics<S>(scene, sol.q.data(), sol.v.data());
+    detail::for_cuts<S>([&](auto k) FLANGE_INLINE_LAMBDA {
+      using CI = detail::cut_info<S, decltype(k)::value>;
+      wrench<T> on_a{Vec3<T>::Zero(), Vec3<T>::Zero()}, on_b = on_a;
+      for (int i = detail::cut_row<S, decltype(k)::value>(); i < detail::cut_row<S, decltype(k)::value>() + CI::rows;
+           ++i) {
+        const auto& r = lt.rows[i];
+        on_a.n += lambda[i] * r.wa;
+        on_a.f += lambda[i] * r.va;
+        on_b.n += lambda[i] * r.wb;
+        on_b.f += lambda[i] * r.vb;
+      }
+      constexpr int fa = tab.frame_base[CI::joint];
+      const Mat3<T>& Ra = sol.frames[fa].R;
+      const Mat3<T>& Rb = sol.frames[fa + 1].R;
+      sol.cut[fa] = {-(Ra * on_a.f), -(Ra * on_a.n)};
+      sol.cut[fa + 1] = {-(Rb * on_b.f), -(Rb * on_b.n)};
+    });
+  }
   // Edges (joints and rigid components) from the leaves inward.
   auto others_in_set = [&](int s, int except) FLANGE_INLINE_LAMBDA {
     wrench<T> w{Vec3<T>::Zero(), Vec3<T>::Zero()};
@@ -329,11 +354,25 @@ template <class S, class T = double, class State>
         Eigen::Map<Mat3<T>>(sol.yd.data() + o) = rate;
       }
     };
-    if constexpr (C::kind == role::joint) {
+    if constexpr (C::kind == role::joint && tree.cut_of[I] < 0) {
       const T* q = sol.q.data() + tree.q_offset[I];
       const T* v = sol.v.data() + tree.v_offset[I];
       c.write_internals(q, v, set);
       if constexpr (requires { c.elastic_energy(q); }) sol.elastic_potential += c.elastic_energy(q);
+    } else if constexpr (C::kind == role::joint) {
+      // A cut joint: its coordinates from its frames, as it would have them.
+      const auto& a = sol.frames[tab.frame_base[I]];
+      const auto& b = sol.frames[tab.frame_base[I] + 1];
+      const Mat3<T> R = b.R * a.R.transpose();
+      const Vec3<T> p = a.R * (b.r - a.r);
+      const Vec3<T> w = a.R * (b.R.transpose() * b.w) - a.w;
+      const Vec3<T> pd = a.R * (b.v - a.v) - a.w.cross(p);
+      std::array<T, C::nq> q;
+      std::array<T, C::nv> v;
+      static_assert(requires { c.cut_state(R, p, w, pd, q.data(), v.data()); },
+                    "flange: recover() needs cut_state() of a joint that closes a loop (core/joint.hpp)");
+      c.cut_state(R, p, w, pd, q.data(), v.data());
+      c.write_internals(q.data(), v.data(), set);
     }
     if constexpr (requires { c.internal_values(t, js, &sol.frames[0]); }) {
       const auto iv = c.internal_values(t, js, &sol.frames[tab.frame_base[I]]);

@@ -55,7 +55,7 @@ void joint_state_from(const S& scene, const Vy& y, const Vyd& yd, T* q, T* v) {
     (
         [&] {
           using C = typename S::template component_type<I>;
-          if constexpr (C::kind == role::joint) {
+          if constexpr (C::kind == role::joint && S::tree.cut_of[I] < 0) {  // a cut joint is not in the state
             constexpr int nf = int(C::frames.size());
             auto get = [&](int k, bool rate) -> const T* {
               const int o = S::template slot_offset<I>(4 * nf + k);

@@ -136,6 +136,8 @@ class Prismatic {
   /// It does not turn; it slides in the plane normal to k when its axis is another coordinate axis.
   static constexpr int planar_normal() { return -2; }
   static constexpr bool moves_in_plane(int k) { return Axis::fixed && Axis::index != k; }
+  /// Closing a loop, it leaves the translation along n free.
+  static constexpr cut_freedom as_cut{.rotations = 0, .translations = 1};
 
   using params = detail::prismatic_params<Axis, Force, Law>;
 
@@ -170,6 +172,13 @@ class Prismatic {
   }
   template <class T>
   void normalize(T*) const {}
+  /// As a cut joint: s and ṡ from frame_b's origin p in frame_a and its
+  /// rate (frame_a coordinates), the inverse of relative_pose on a closed loop.
+  template <class T>
+  void cut_state(const Mat3<T>&, const Vec3<T>& p, const Vec3<T>&, const Vec3<T>& pd, T* q, T* v) const {
+    q[0] = n_.cast<T>().dot(p);
+    v[0] = n_.cast<T>().dot(pd);
+  }
   template <class T>
   [[nodiscard]] pose<T> relative_pose(const T* q) const {
     return {Mat3<T>::Identity(), q[0] * n_.cast<T>()};

@@ -194,6 +194,8 @@ class Revolute {
   /// It turns about its axis: a coordinate axis makes it planar about that axis.
   static constexpr int planar_normal() { return Axis::fixed ? Axis::index : -1; }
   static constexpr bool moves_in_plane(int k) { return Axis::fixed && Axis::index == k; }
+  /// Closing a loop, it leaves the rotation about n free.
+  static constexpr cut_freedom as_cut{.rotations = 1, .translations = 0};
 
   using params = std::conditional_t<driven, detail::revolute_driven_params<Axis, Law, Tau>,
                                     detail::revolute_params<Axis, Law>>;
@@ -242,6 +244,19 @@ class Revolute {
   template <class T>
   [[nodiscard]] pose<T> relative_pose(const T* q) const {
     return {axis_rotation<T>(n_.cast<T>(), q[0]), Vec3<T>::Zero()};
+  }
+  /// As a cut joint: φ and φ̇ from frame_b's pose in frame_a (R rotates
+  /// frame_a coordinates into frame_b's) and the relative angular velocity
+  /// w (frame_a coordinates), the inverse of relative_pose on a closed loop.
+  template <class T>
+  void cut_state(const Mat3<T>& R, const Vec3<T>&, const Vec3<T>& w, const Vec3<T>&, T* q, T* v) const {
+    using std::atan2;
+    Vec3d e1, e2;
+    e1 = n_.cross(std::abs(n_[0]) < 0.9 ? Vec3d::UnitX() : Vec3d::UnitY()).normalized();
+    e2 = n_.cross(e1);
+    const Vec3<T> Re1 = R * e1.cast<T>();
+    q[0] = atan2(-e2.cast<T>().dot(Re1), e1.cast<T>().dot(Re1));
+    v[0] = n_.cast<T>().dot(w);
   }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const {

@@ -83,6 +83,8 @@ class Spherical {
   static constexpr bool reversible = true;
   static constexpr int planar_normal() { return -1; }
   static constexpr bool moves_in_plane(int) { return false; }
+  /// Closing a loop, it leaves every rotation free and locks the origins together.
+  static constexpr cut_freedom as_cut{.rotations = 3, .translations = 0};
 
   struct params {};
   Spherical() = default;
@@ -109,6 +111,14 @@ class Spherical {
   template <class T>
   [[nodiscard]] pose<T> relative_pose(const T* q) const {
     return {quaternion::to_rotation(q), Vec3<T>::Zero()};
+  }
+  /// As a cut joint: the quaternion of frame_b's orientation in frame_a
+  /// and the relative angular velocity in frame_b coordinates.
+  template <class T>
+  void cut_state(const Mat3<T>& R, const Vec3<T>&, const Vec3<T>& w, const Vec3<T>&, T* q, T* v) const {
+    quaternion::from_rotation(R, q);
+    const Vec3<T> wb = R * w;
+    for (int i = 0; i < 3; ++i) v[i] = wb(i);
   }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const {

@@ -17,6 +17,9 @@ namespace flange {
 template <int N> struct equations_declared {};
 template <int N> struct equations_needed {};
 template <int N> struct unknowns {};
+template <int N> struct constraints {};
+template <int N> struct rates {};
+template <class... Joints> struct cut_joints {};
 template <int N> struct state_size_given {};
 template <int N> struct state_size_needed {};
 
@@ -85,8 +88,23 @@ struct unbalanced_scene {
 template <class Component>
 struct kinematic_loop {
   static_assert(always_false<Component>,
-                "flange: this joint or rigid component closes a kinematic loop; the generated dynamics handle trees "
-                "only, so remove it or cut the loop");
+                "flange: this component closes a loop that no joint can cut (a loop of rigid components only, or "
+                "a joint whose two frames are connected to each other), so nothing in it can move; remove it");
+};
+template <class Joint>
+struct joint_cannot_close_loop {
+  static_assert(always_false<Joint>,
+                "flange: this joint closes a kinematic loop (the last joint written in a loop is cut), and it cannot "
+                "be cut: its type cannot (Revolute, Prismatic and Spherical can), or it has a drive or an axis law; "
+                "write the loop so that an undriven Revolute, Prismatic or Spherical joint of it comes last");
+};
+template <class Counts>
+struct loop_overconstrained {
+  static_assert(always_false<Counts>,
+                "flange: the loops lock more relative motions (constraints) than the tree's joints have rates "
+                "(the counts and the cut joints are the template arguments); give the loops more joints, or, for a "
+                "planar mechanism, put every joint's axis on the same coordinate axis (axis::z) so that only the "
+                "in-plane constraints count");
 };
 template <class Component>
 struct not_tied_through_joints {

@@ -155,7 +155,7 @@ constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
 /// link. Links are numbered breadth-first, so a parent precedes its children.
 template <int NC, int NF>
 struct tree {
-  int loop = -1;      ///< a joint or rigid edge that closes a kinematic loop
+  int loop = -1;      ///< a loop no joint can close: rigid edges only, or a joint with both frames in one set
   int floating = -1;  ///< a component not tied to the World through joints and rigid edges
   int n_links = 1;
   int n_q = 0;
@@ -176,6 +176,11 @@ struct tree {
   std::array<int, NF> set_rotation{};         ///< rotation of a set relative to its link: −2 none, −1 any, k about axis k
   int n_tree_sets = 0;
   std::array<int, NF> set_order{};            ///< sets in breadth-first order from the World's
+  // Closed loops (dynamics/loops.hpp): each loop is closed by a cut joint,
+  // which stays out of the tree and of the state and becomes constraints.
+  int n_cuts = 0;
+  std::array<int, NC> cuts{};                 ///< cut k → its joint component
+  std::array<int, NC> cut_of{};               ///< component → its cut index, −1 for others
 };
 
 template <int NC, int NF, int NK>
@@ -184,10 +189,39 @@ constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topolo
   for (auto& s : r.set_link) s = -1;
   for (auto& s : r.set_parent) s = -1;
   for (auto& s : r.set_edge) s = -1;
+  for (auto& x : r.set_rotation) x = -2;
+  for (auto& x : r.cut_of) x = -1;
+  std::array<bool, NC> used{};
+  // Loops first, by union–find: rigid edges, then joints, each in scene
+  // order. A joint that joins two sets already joined closes a loop and is
+  // cut: the last joint written in each loop (docs/loops.md). A rigid edge
+  // that does so closes a loop of rigid edges, which nothing can cut, and so
+  // does a joint whose two frames are in one set.
+  if (topo.ok()) {
+    std::array<int, NF> uf{};
+    for (int i = 0; i < NF; ++i) uf[i] = i;
+    for (int pass = 0; pass < 2; ++pass)
+      for (int e = 0; e < NC; ++e) {
+        if (t.kinds[e] != (pass == 0 ? role::rigid : role::joint)) continue;
+        const int sa = topo.set_of[t.frame_base[e]], sb = topo.set_of[t.frame_base[e] + 1];
+        const int a = find_root(uf, sa), b = find_root(uf, sb);
+        if (a != b) {
+          uf[b] = a;
+          continue;
+        }
+        used[e] = true;  // left out of the tree
+        if (pass == 0 || sa == sb) {
+          if (r.loop < 0) r.loop = e;
+        } else {
+          r.cut_of[e] = r.n_cuts;
+          r.cuts[r.n_cuts++] = e;
+        }
+      }
+  }
   for (int c = 0; c < NC; ++c) {
     r.joint_index[c] = r.q_offset[c] = r.v_offset[c] = -1;
     r.link_of_joint[c] = -1;
-    if (t.kinds[c] == role::joint) {
+    if (t.kinds[c] == role::joint && r.cut_of[c] < 0) {
       r.joint_index[c] = r.n_joints++;
       r.q_offset[c] = r.n_q;
       r.v_offset[c] = r.n_v;
@@ -195,25 +229,7 @@ constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topolo
       r.n_v += t.nv[c];
     }
   }
-  for (auto& x : r.set_rotation) x = -2;
   if (!topo.ok()) return r;
-  std::array<bool, NC> used{};
-  // Loops first, by union–find over joints and rigid edges in scene order: the
-  // edge that closes a loop is the last one written, which is the one to name.
-  {
-    std::array<int, NF> uf{};
-    for (int i = 0; i < NF; ++i) uf[i] = i;
-    for (int e = 0; e < NC; ++e) {
-      if (t.kinds[e] != role::joint && t.kinds[e] != role::rigid) continue;
-      const int a = find_root(uf, topo.set_of[t.frame_base[e]]), b = find_root(uf, topo.set_of[t.frame_base[e] + 1]);
-      if (a == b) {
-        if (r.loop < 0) r.loop = e;
-        used[e] = true;  // left out of the tree
-      } else {
-        uf[b] = a;
-      }
-    }
-  }
   std::array<int, NF> queue{};
   int head = 0, tail = 0;
   const int root = topo.set_of[t.frame_base[topo.world]];

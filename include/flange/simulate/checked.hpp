@@ -7,7 +7,8 @@
 // It throws flange::simulation_error, with the time, the state and the reason,
 //   * when the state or the derivative is not finite (a NaN never propagates
 //     into a trajectory), or the initial joint coordinates are not valid (a
-//     quaternion far from unit norm: an input mistake, not drift),
+//     quaternion far from unit norm: an input mistake, not drift) or do not
+//     close the scene's loops,
 //   * when the budget of derivative evaluations is spent: the usual sign that
 //     an explicit stepper meets a stiff scene (Boost 1.74's max_step_checker
 //     does not stop a controlled stepper in integrate_const; this does),
@@ -65,6 +66,7 @@ struct checked_system {
     if (b->rhs_evals == 1) [[unlikely]] {
       try {
         check_coordinates(*scene, x);
+        check_loops(*scene, x);
       } catch (const parameter_error& e) {
         fail(e.what(), x, t);
       }

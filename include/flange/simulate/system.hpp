@@ -40,10 +40,25 @@ class System : public S {
                                       typename S::component_types>::value);
     static_assert(S::template report_cut_off<(S::topology.ok() && S::tree.loop < 0 ? S::tree.floating : -1),
                                              diagnostic::not_tied_through_joints>());
+    static_assert(detail::report_list<(S::topology.ok() ? detail::first_uncuttable_joint<S>() : -1),
+                                      diagnostic::joint_cannot_close_loop, typename S::component_types>::value);
+    static_assert(report_overconstrained());
     if constexpr (S::joints_complete) derivative(x, dxdt, t);  // else the scene has said what is missing
   }
 
  private:
+  static constexpr bool report_overconstrained() {
+    if constexpr (S::topology.ok() && detail::n_constraints<S>() > S::n_v) {
+      constexpr auto cut_types = []<int... K>(std::integer_sequence<int, K...>) {
+        return cut_joints<typename detail::cut_info<S, K>::joint_type...>{};
+      }(std::make_integer_sequence<int, S::tree.n_cuts>{});
+      (void)sizeof(diagnostic::loop_overconstrained<
+                   detail::type_list<constraints<detail::n_constraints<S>()>,
+                                     rates<S::n_v>, std::remove_const_t<decltype(cut_types)>>>);
+    }
+    return true;
+  }
+
   template <class State, class T>
   void derivative(const State& x, State& dxdt, const T t) const {
     S::require_state_size(x);
@@ -84,8 +99,10 @@ typename S::state_type neutral_state(const S& scene) {
   return x;
 }
 
-/// Keeps every joint's coordinates valid (a quaternion back to unit norm):
-/// a projection between steps, for long runs.
+/// Keeps every joint's coordinates valid (a quaternion back to unit norm)
+/// and, in a scene with loops, (q, v) on the loops' constraints (Newton on
+/// Φ(q) = 0, then G·v = 0, each the least change: dynamics/loops.hpp): a
+/// projection between steps (integrate_projected does it after each step).
 template <class S, class State>
 void normalize(const S& scene, State& x) {
   S::require_state_size(x);
@@ -93,7 +110,13 @@ void normalize(const S& scene, State& x) {
     using LI = detail::link_info<S, decltype(l)::value>;
     scene.template component<LI::joint>().normalize(x.data() + LI::q);
   });
+  if constexpr (detail::has_loops<S>) {
+    std::array<bool, S::n_v> free;
+    free.fill(true);
+    detail::project_onto_loops(scene, x.data(), x.data() + S::n_q, free);
+  }
 }
+
 
 namespace detail {
 /// The joint named Name in scene S, checked at compile time (a misspelt
@@ -160,6 +183,89 @@ void check_coordinates(const S& scene, const State& x) {
     const auto& j = scene.template component<LI::joint>();
     if constexpr (requires { j.check_coordinates(x.data()); }) j.check_coordinates(x.data() + LI::q);
   });
+}
+
+namespace detail {
+/// The loop the constraint row lies in, for a message: its cut joint.
+template <class S>
+std::string describe_loop(const S& scene, int row) {
+  return concat("the loop closed by ", describe_component(scene, S::tree.cuts[row < 0 ? 0 : cut_of_row<S>(row)]));
+}
+/// How far a loop is open: a translation row in metres, a rotation row as an angle.
+template <class S>
+std::string loop_gap(int row, double phi) {
+  const int k = cut_of_row<S>(row);
+  bool translation = false;
+  for_cuts<S>([&](auto c) {
+    using CI = cut_info<S, decltype(c)::value>;
+    if (decltype(c)::value == k) translation = row < cut_row<S, decltype(c)::value>() + CI::translation_rows;
+  });
+  return translation ? concat(phi, " m apart") : concat(phi, " rad out of line");
+}
+/// The largest |Φ| a state may have and still be taken as closed.
+template <class S>
+double closure_tolerance(const S& scene) {
+  return 1e-9 * length_scale(scene);
+}
+}  // namespace detail
+
+/// Closes the scene's loops from the joints named (held: their coordinates
+/// and rates are kept) by changing the others as little as possible:
+///
+///   auto x = initial_state<"crank_pivot">(fourbar, {.q = 1.0, .v = 2.0});
+///   close_loops<"crank_pivot">(fourbar, x);   // the coupler and rocker follow
+///
+/// The other joints' coordinates in x are the guess; Newton's method finds
+/// the closed position nearest to it, then the rates with G·v = 0. Throws
+/// parameter_error naming the loop if it cannot close near the guess (links
+/// too short to meet, or a guess past a dead point), or if the held rates
+/// cannot be met.
+template <fixed_string... Held, class S, class State>
+void close_loops(const S& scene, State& x) {
+  S::require_state_size(x);
+  std::array<bool, S::n_v> free;
+  free.fill(true);
+  ((void)[&] {
+    using J = typename detail::named_joint<S, Held>::type;
+    constexpr int c = detail::named_joint<S, Held>::index;
+    for (int i = 0; i < J::nv; ++i) free[S::tree.v_offset[c] + i] = false;
+  }(), ...);
+  if constexpr (detail::has_loops<S>) {
+    const auto r = detail::project_onto_loops(scene, x.data(), x.data() + S::n_q, free);
+    const double tol = detail::closure_tolerance(scene);
+    if (!(r.phi <= tol))
+      throw parameter_error(detail::concat("flange: ", detail::describe_loop(scene, r.worst_row),
+                                           " cannot close near the given state: its frames stay ",
+                                           detail::loop_gap<S>(r.worst_row, r.phi), " after ", r.iterations,
+                                           " Newton steps (the links cannot meet there, or the guess is past a "
+                                           "dead point); ",
+                                           detail::describe_state(x.data(), S::n_q, x.data() + S::n_q, S::n_v)));
+    if (!(r.phid <= tol))
+      throw parameter_error(detail::concat("flange: the loops cannot move at the rates held (", r.phid,
+                                           " left in G·v): the held joints' rates are not a motion of the "
+                                           "mechanism, or it is at a dead point; ",
+                                           detail::describe_state(x.data(), S::n_q, x.data() + S::n_q, S::n_v)));
+  }
+}
+
+/// Throws parameter_error naming the loop if the state does not close the
+/// scene's loops (|Φ| above closure_tolerance): a state set by hand usually
+/// does not; close_loops makes one that does.
+template <class S, class State>
+void check_loops(const S& scene, const State& x) {
+  if constexpr (detail::has_loops<S>) {
+    std::array<double, S::n_v> zero{};
+    const auto k = detail::loop_kinematics<S>(scene, x.data(), zero.data());
+    for (int i = 0; i < detail::n_constraints<S>(); ++i)
+      if (!(std::abs(k.phi[i]) <= detail::closure_tolerance(scene)))
+        throw parameter_error(detail::concat(
+            "flange: the state leaves ", detail::describe_loop(scene, i), " open: its frames are ",
+            detail::loop_gap<S>(i, std::abs(k.phi[i])), "; set the independent joints and call close_loops<…>(scene, x); ",
+            detail::describe_state(x.data(), S::n_q, x.data() + S::n_q, S::n_v)));
+  } else {
+    (void)scene;
+    (void)x;
+  }
 }
 
 }  // namespace flange
