@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include <benchmark/benchmark.h>
+#include <flange/models/linkages.hpp>
 #include <flange/models/paper.hpp>
 
 namespace flange::bench {
@@ -59,6 +60,18 @@ struct handwritten_crane_no_gravity {
     dx[1] = x[3];
     dx[2] = (f + pull) / den;
     dx[3] = -(f + pull) * c / (p.d * den);
+  }
+};
+
+/// The free four-bar in its one coordinate θ2, by Lagrange with the loop
+/// closed in closed form (models::fourbar_crank_acceleration): what one would
+/// write by hand for this mechanism.
+struct handwritten_fourbar {
+  models::fourbar_params p;
+  template <class State>
+  void operator()(const State& x, State& dx, double) const {
+    dx[0] = x[1];
+    dx[1] = models::fourbar_crank_acceleration(p, x[0], x[1]);
   }
 };
 

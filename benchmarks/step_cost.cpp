@@ -2,7 +2,9 @@
 // closed form, compiled in the same binary, for the robot arm and the gantry
 // crane; one runge_kutta4 step with a std::array state (range_algebra) and an
 // Eigen state (vector_space_algebra); and the two algorithms (Newton–Euler +
-// mass matrix, the default, against articulated-body) on chains.
+// mass matrix, the default, against articulated-body) on chains; and the
+// four-bar (a closed loop) against its hand-written one-coordinate equation
+// of motion and against the same bars as an open chain.
 //
 // After Google Benchmark's table it prints one line per comparison,
 //   ratio <scene> <what> generated/handwritten = <x.xx>
@@ -139,6 +141,29 @@ using rk4_array = odeint::runge_kutta4<S>;
 template <class S>
 using rk4_eigen = odeint::runge_kutta4<S, double, S, double, odeint::vector_space_algebra>;
 
+const models::fourbar_params fourbar_p{};
+const auto fourbar = models::fourbar(fourbar_p);
+const bench::handwritten_fourbar fourbar_hw{fourbar_p};
+/// The same three bars without the rocker's pivot: the tree alone, the
+/// yardstick for what the loop adds.
+const auto fourbar_open = [] {
+  using models::bar;
+  const auto& p = fourbar_p;
+  return scene(World<"world">({.g = p.g}), Revolute<"crank_pivot", axis::z>{}, bar<"crank">(p.crank, p.m_crank),
+               Revolute<"crank_pin", axis::z>{}, bar<"coupler">(p.coupler, p.m_coupler),
+               Revolute<"rocker_pin", axis::z>{}, bar<"rocker">(p.rocker, p.m_rocker),
+               connect<"world.frame_b", "crank_pivot.frame_a">, connect<"crank_pivot.frame_b", "crank.frame_a">,
+               connect<"crank.frame_b", "crank_pin.frame_a">, connect<"crank_pin.frame_b", "coupler.frame_a">,
+               connect<"coupler.frame_b", "rocker_pin.frame_a">, connect<"rocker_pin.frame_b", "rocker.frame_a">);
+}();
+/// The four-bar at θ2 = 1 rad, θ̇2 = 3 rad/s, its loop closed.
+std::array<double, 6> fourbar_state() {
+  const auto q = models::fourbar_coordinates(fourbar_p, 1.0, models::freudenstein_rocker(fourbar_p, 1.0));
+  std::array<double, 6> x{q[0], q[1], q[2], 3.0, 0, 0};
+  close_loops<"crank_pivot">(fourbar, x);
+  return x;
+}
+
 const A2 arm_x{0.3, 0.7};
 const A4 crane_x{0.2, 0.4, 0.3, -0.5};
 
@@ -171,6 +196,9 @@ void register_all() {
   reg("gantry_crane/rk4_step_eigen/handwritten", [](benchmark::State& s) {
     rk4_steps<E4, rk4_eigen<E4>>(s, crane_hw, E4(crane_x[0], crane_x[1], crane_x[2], crane_x[3]));
   });
+  reg("fourbar/derivative/generated", [](benchmark::State& s) { bench::derivative(s, fourbar, fourbar_state()); });
+  reg("fourbar/derivative/handwritten", [](benchmark::State& s) { bench::derivative(s, fourbar_hw, A2{1.0, 3.0}); });
+  reg("fourbar/derivative/open_chain", [](benchmark::State& s) { bench::derivative(s, fourbar_open, fourbar_state()); });
   reg("robot_arm/residual/106_equations", [](benchmark::State& s) { residual_eval(s, arm, arm_x); });
   reg("robot_arm/recover/all_variables", [](benchmark::State& s) { recover_all(s, arm, arm_x); });
   reg("gantry_crane/residual/125_equations", [](benchmark::State& s) { residual_eval(s, crane, crane_x); });
@@ -220,9 +248,10 @@ int main(int argc, char** argv) {
     std::printf("  medians: %s %.1f ns, %s %.1f ns\n", a.c_str(), x->second, b.c_str(), y->second);
   };
   std::printf("\n");
-  for (const char* scene : {"robot_arm", "gantry_crane"})
+  for (const char* scene : {"robot_arm", "gantry_crane", "fourbar"})
     for (const char* what : {"derivative", "rk4_step_array", "rk4_step_eigen"})
       ratio("ratio", scene, what, "generated", "handwritten");
+  ratio("loop", "fourbar", "derivative", "generated", "open_chain");
   for (const char* scene : {"chain2_planar", "chain4_spatial", "chain8_spatial", "free_body", "legged"})
     ratio("algorithm", scene, "derivative", "newton_euler", "articulated_body");
   ratio("overhead", "robot_arm", "rk4_step_array", "checked", "generated");

@@ -223,7 +223,7 @@ int main(int argc, char** argv) {
       o.reference_out = argv[++i];
     else {
       std::cerr << "usage: work_precision [--quick] [--csv FILE] [--scene NAME] [--reference-out FILE]\n"
-                   "scenes: robot_arm gantry_crane double_pendulum spatial_chain4 stiff_joint free_body legged\n";
+                   "scenes: robot_arm gantry_crane double_pendulum spatial_chain4 stiff_joint free_body fourbar legged\n";
       return 2;
     }
   }
@@ -286,6 +286,17 @@ int main(int argc, char** argv) {
       set_joint<"fly">(free_body, x0,
                        {.r = Vec3d::Zero(), .v = Vec3d(1, 2, 0), .R = orientation{}, .w = Vec3d(0.3, 4, 0.2)});
       study_scene("free_body", free_body, x0, 5.0, false, o, points, refs);
+    }
+    {
+      // A closed loop: the crank-rocker four-bar (models/linkages.hpp), free
+      // under gravity from θ2 = 1 rad at 3 rad/s, its loop closed. The plain
+      // ODE form (no projection between steps) for every stepper.
+      const models::fourbar_params p{};
+      const auto fb = models::fourbar(p);
+      const auto q = models::fourbar_coordinates(p, 1.0, models::freudenstein_rocker(p, 1.0));
+      std::array<double, 6> x0{q[0], q[1], q[2], 3.0, 0, 0};
+      close_loops<"crank_pivot">(fb, x0);
+      study_scene("fourbar", fb, x0, 5.0, false, o, points, refs);
     }
     {
       // A floating-base robot falling freely: a trunk on a FreeMotion with four

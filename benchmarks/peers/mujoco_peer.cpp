@@ -1,5 +1,6 @@
-// MuJoCo on the paper's robot arm and gantry crane, a free body and a
-// floating-base robot with four legs, measured the way
+// MuJoCo on the paper's robot arm and gantry crane, a free body, a
+// floating-base robot with four legs and a four-bar (a closed loop, held by
+// MuJoCo's soft equality constraint), measured the way
 // benchmarks/work_precision.cpp measures flange: the scaled error at T against
 // flange's long-double reference, and the median wall time per simulated
 // second, over a sweep of time steps for each of MuJoCo's integrators.
@@ -8,7 +9,8 @@
 //
 // The models match flange's (peer_common.hpp): a hinge about z and a slide
 // along x, the inertial properties at the same places, gravity along −y,
-// armature and damping 0, contacts and every constraint off. The motor torque
+// armature and damping 0, contacts and (but for the four-bar's loop) every
+// constraint off. The motor torque
 // and the cart force are actuators whose controls are set in mjcb_control, so
 // an input would be seen at every RK4 stage; both inputs are 0 here, as in
 // flange's study.
@@ -98,6 +100,40 @@ std::string legged_xml() {
     x << "</body></body></body>";
   }
   x << "</body></worldbody></mujoco>";
+  return x.str();
+}
+
+/// The four-bar: three hinges about z in a chain, and an equality
+/// constraint ("connect") pinning the rocker's end to the world. MuJoCo's
+/// constraints are soft (its default solref 0.02 s, solimp): the loop is
+/// held by a stiff damped spring, not exactly. A connect's world anchor is
+/// where the rocker's end is at qpos0, so the bodies are drawn at the closed
+/// initial configuration x0 with each hinge's ref at its angle there: qpos
+/// is then flange's q.
+std::string fourbar_xml(const std::vector<double>& x0) {
+  auto bar = [](double L, double m) {
+    std::ostringstream b;
+    const double I = m * L * L / 12;
+    b << "<inertial pos='" << L / 2 << " 0 0' mass='" << m << "' diaginertia='" << 1e-3 * I << ' ' << I << ' ' << I
+      << "'/>";
+    return b.str();
+  };
+  auto hinge = [](double ref) {
+    std::ostringstream h;
+    h.precision(17);
+    h << "<joint type='hinge' axis='0 0 1' ref='" << ref << "' armature='0' damping='0' limited='false'/>";
+    return h.str();
+  };
+  std::ostringstream x;
+  x.precision(17);
+  x << "<mujoco model='fourbar'><compiler angle='radian'/>"
+    << "<option gravity='0 " << -peer::g << " 0'><flag contact='disable'/></option><worldbody>"
+    << "<body name='crank' euler='0 0 " << x0[0] << "'>" << hinge(x0[0]) << bar(peer::fourbar_a, peer::fourbar_ma)
+    << "<body name='coupler' pos='" << peer::fourbar_a << " 0 0' euler='0 0 " << x0[1] << "'>" << hinge(x0[1])
+    << bar(peer::fourbar_b, peer::fourbar_mb) << "<body name='rocker' pos='" << peer::fourbar_b << " 0 0' euler='0 0 "
+    << x0[2] << "'>" << hinge(x0[2]) << bar(peer::fourbar_c, peer::fourbar_mc)
+    << "</body></body></body></worldbody>"
+    << "<equality><connect body1='rocker' body2='world' anchor='" << peer::fourbar_c << " 0 0'/></equality></mujoco>";
   return x.str();
 }
 
@@ -195,19 +231,20 @@ int main(int argc, char** argv) {
   std::printf("MuJoCo %s (Debian's libmujoco): RK4, semi-implicit and implicit Euler over a time-step sweep\n",
               mj_versionString());
   mjcb_control = control;
-  const auto refs = peer::read_references(o.reference,
-                                          {{"robot_arm", 2}, {"gantry_crane", 4}, {"free_body", 13}, {"legged", 37}});
+  const auto refs = peer::read_references(
+      o.reference, {{"robot_arm", 2}, {"gantry_crane", 4}, {"free_body", 13}, {"legged", 37}, {"fourbar", 6}});
   for (const auto& [name, xml] : {std::pair{std::string("robot_arm"), arm_xml()},
                                   {"gantry_crane", crane_xml()},
                                   {"free_body", free_body_xml()},
-                                  {"legged", legged_xml()}}) {
+                                  {"legged", legged_xml()},
+                                  {"fourbar", std::string()}}) {
     if (!o.scene.empty() && o.scene != name) continue;
     const auto r = refs.find(name);
     if (r == refs.end()) {
       std::printf("mujoco: no reference for %s in %s\n", name.c_str(), o.reference.c_str());
       continue;
     }
-    study(name, xml, r->second, o.quick);
+    study(name, name == "fourbar" ? fourbar_xml(r->second.x0) : xml, r->second, o.quick);
   }
   return 0;
 }

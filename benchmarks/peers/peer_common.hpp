@@ -18,6 +18,12 @@
 //                 three 0.25 m links (0.6 kg at mid-link, J = diag(0.004,
 //                 0.0005, 0.004)), the hip about y, knee and ankle about x;
 //                 x = (trunk as free_body, 12 joint angles, 12 joint rates)
+//   fourbar       models::fourbar({}): a crank-rocker four-bar of uniform bars
+//                 (I = m·L²/12 about the centre across, 1e-3 of that about the
+//                 bar's axis): crank a = 0.3 m, 1 kg, about z at the origin;
+//                 coupler b = 1 m, 2 kg; rocker c = 0.8 m, 1.5 kg, whose end is
+//                 pinned at (d, 0, 0), d = 1 m; x = the tree's (θ2, θ3 − θ2,
+//                 rocker − θ3, rates), the loop closed at x0
 #pragma once
 #include <algorithm>
 #include <chrono>
@@ -38,6 +44,9 @@ inline const double free_m = 2.0, free_cm = 0.1, free_J[3] = {0.1, 0.2, 0.3};
 inline const double legged_trunk_m = 10.0, legged_trunk_J[3] = {0.1, 0.3, 0.25}, legged_link_m = 0.6,
                     legged_link_L = 0.25, legged_link_J[3] = {0.004, 0.0005, 0.004}, legged_hip_x = 0.3,
                     legged_hip_z = 0.15;
+
+inline const double fourbar_d = 1.0, fourbar_a = 0.3, fourbar_b = 1.0, fourbar_c = 0.8, fourbar_ma = 1.0,
+                    fourbar_mb = 2.0, fourbar_mc = 1.5;
 
 struct reference {
   double T = 0;

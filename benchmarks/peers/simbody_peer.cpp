@@ -1,4 +1,5 @@
-// Simbody on the paper's robot arm and gantry crane, measured the way
+// Simbody on the paper's robot arm and gantry crane and on a four-bar (a
+// closed loop: a Ball constraint, projected by Simbody), measured the way
 // benchmarks/work_precision.cpp measures flange: the scaled error at T against
 // flange's long-double reference, and the median wall time per simulated
 // second, over a sweep of accuracies for each of Simbody's integrators.
@@ -42,6 +43,22 @@ void study(const std::string& name, const peer::reference& ref, bool quick) {
     const Body::Rigid body(MassProperties(
         peer::arm_m, c, Inertia(Vec3(peer::arm_Jx, peer::arm_Jz, peer::arm_Jz)).shiftFromMassCenter(-c, peer::arm_m)));
     joints.push_back(MobilizedBody::Pin(matter.Ground(), Transform(), body, Transform()));
+  } else if (name == "fourbar") {
+    // Three Pins in a chain and a Ball constraint pinning the rocker's end to
+    // the ground (its z row is redundant in this planar loop; Simbody's
+    // projection takes redundant constraints).
+    auto bar = [](double L, double m) {
+      const Vec3 c(L / 2, 0, 0);
+      const double I = m * L * L / 12;
+      return Body::Rigid(MassProperties(m, c, Inertia(Vec3(1e-3 * I, I, I)).shiftFromMassCenter(-c, m)));
+    };
+    MobilizedBody::Pin crank(matter.Ground(), Transform(), bar(peer::fourbar_a, peer::fourbar_ma), Transform());
+    MobilizedBody::Pin coupler(crank, Transform(Vec3(peer::fourbar_a, 0, 0)), bar(peer::fourbar_b, peer::fourbar_mb),
+                               Transform());
+    MobilizedBody::Pin rocker(coupler, Transform(Vec3(peer::fourbar_b, 0, 0)), bar(peer::fourbar_c, peer::fourbar_mc),
+                              Transform());
+    Constraint::Ball(rocker, Vec3(peer::fourbar_c, 0, 0), matter.Ground(), Vec3(peer::fourbar_d, 0, 0));
+    joints = {crank, coupler, rocker};
   } else {
     const Body::Rigid cart(MassProperties(peer::crane_M, Vec3(0), Inertia(0.1 * peer::crane_M)));
     const Vec3 c(peer::crane_d, 0, 0);
@@ -113,8 +130,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::printf("Simbody 3.7 (Debian's libsimbody, built with its assertions on): accuracy sweep per integrator\n");
-  const auto refs = peer::read_references(o.reference, {{"robot_arm", 2}, {"gantry_crane", 4}});
-  for (const char* name : {"robot_arm", "gantry_crane"}) {
+  const auto refs = peer::read_references(o.reference, {{"robot_arm", 2}, {"gantry_crane", 4}, {"fourbar", 6}});
+  for (const char* name : {"robot_arm", "gantry_crane", "fourbar"}) {
     if (!o.scene.empty() && o.scene != name) continue;
     const auto r = refs.find(name);
     if (r == refs.end()) {
