@@ -9,7 +9,8 @@
 //   fourbar --csv FILE      write the trajectory to FILE
 //
 // The CSV has t, the crank angle θ2, the rocker angle θ4, Freudenstein's θ4
-// at the same θ2, the motor torque, and the constraint error |Φ|.
+// at the same θ2, the motor torque, the force in the rocker's pivot (the cut
+// joint: recovered from the constraint forces), and the constraint error |Φ|.
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -55,14 +56,16 @@ int main(int argc, char** argv) {
   auto x = initial_state<"crank_pivot", "crank_pin", "rocker_pin">(fb, {.q = 0.0, .v = omega}, {.q = 1.3}, {.q = 2.4});
   close_loops<"crank_pivot">(fb, x);
   std::ofstream out(csv);
-  out << "t,theta2,theta4,theta4_freudenstein,motor_torque,constraint_error\n";
+  out << "t,theta2,theta4,theta4_freudenstein,motor_torque,pivot_force,constraint_error\n";
   out.precision(12);
-  double worst_freudenstein = 0, worst_phi = 0, torque_min = 1e300, torque_max = -1e300;
+  double worst_freudenstein = 0, worst_phi = 0, torque_min = 1e300, torque_max = -1e300, force_max = 0;
   auto stepper = odeint::make_controlled(1e-10, 1e-10, odeint::runge_kutta_dopri5<S::state_type>());
   const auto steps = integrate_projected(stepper, fb, x, 0.0, 5.0, 1e-3, [&](const S::state_type& y, double t) {
     const double th2 = y[0], th4 = y[0] + y[1] + y[2] - std::numbers::pi;
     const double ref = models::freudenstein_rocker(p, th2);
     const double tau = gain * (omega - y[3]);
+    const double pivot = recover(fb, t, y).cut_at("rocker_pivot.frame_b").f.norm();
+    force_max = std::max(force_max, pivot);
     const auto k = detail::loop_kinematics<S>(fb, y.data(), y.data() + S::n_q);
     const double phi = std::max(std::abs(k.phi[0]), std::abs(k.phi[1]));
     worst_freudenstein = std::max(worst_freudenstein, std::abs(std::remainder(th4 - ref, 2 * std::numbers::pi)));
@@ -70,13 +73,14 @@ int main(int argc, char** argv) {
     torque_min = std::min(torque_min, tau);
     torque_max = std::max(torque_max, tau);
     out << t << ',' << th2 << ',' << std::remainder(th4, 2 * std::numbers::pi) << ','
-        << std::remainder(ref, 2 * std::numbers::pi) << ',' << tau << ',' << phi << '\n';
+        << std::remainder(ref, 2 * std::numbers::pi) << ',' << tau << ',' << pivot << ',' << phi << '\n';
   });
   std::cout << "flange four-bar: " << S::n_equations << " equations, " << S::n_unknowns << " unknowns; tree state of "
             << S::n_state << ", " << detail::n_constraints<S>() << " loop constraints (cut at \"rocker_pivot\")\n"
             << "  motor PD on the crank rate (2 rev/s), 5 s, dopri5 at 1e-10 with projection, " << steps << " steps\n"
             << "  crank turned " << x[0] / (2 * std::numbers::pi) << " revolutions; motor torque between "
-            << torque_min << " and " << torque_max << " N m\n"
+            << torque_min << " and " << torque_max << " N m; force in the rocker's pivot up to " << force_max
+            << " N\n"
             << "  rocker angle against Freudenstein's equation: " << worst_freudenstein << " rad at worst\n"
             << "  loop closure |Φ| at worst: " << worst_phi << "\n"
             << "  wrote " << csv << "\n";

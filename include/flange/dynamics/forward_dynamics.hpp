@@ -11,11 +11,12 @@
 #include "flange/scene/named_state.hpp"
 #include "flange/detail/inline.hpp"
 #include <array>
+#include <cmath>
 #include <string>
 
 #include "flange/dynamics/external.hpp"
 #include "flange/dynamics/ldlt.hpp"
-#include "flange/dynamics/loops.hpp"
+#include "flange/dynamics/loop_solve.hpp"
 #include "flange/dynamics/mass_matrix.hpp"
 #include "flange/dynamics/newton_euler.hpp"
 
@@ -131,7 +132,7 @@ void accelerations_in(const S& scene, const T& t, const T* q, const T* v, T* vdo
   detail::solve_accelerations<A>(scene, t, q, v, vdot, motions, detail::pose_motions<A>(scene, q, motions));
 }
 
-/// v̇ at (t, q, v) and the loops' constraint forces λ (dynamics/loops.hpp),
+/// v̇ at (t, q, v) and the loops' constraint forces λ (dynamics/loop_solve.hpp),
 /// for a scene with loops.
 template <class S, class T>
 void accelerations_and_constraint_forces(const S& scene, const T& t, const T* q, const T* v, T* vdot, T* lambda) {

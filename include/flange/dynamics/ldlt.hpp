@@ -33,7 +33,7 @@ struct pivot_report {
 
 /// The LDLᵀ factors of a symmetric positive-definite M, computed in place:
 /// L below M's diagonal, 1/D here. Factor once, solve for several
-/// right-hand sides (a loop scene's M⁻¹·Gᵀ, dynamics/loops.hpp).
+/// right-hand sides (a loop scene's constraint solve, dynamics/loop_solve.hpp).
 template <int N, class T>
 struct ldlt_pivots {
   std::array<T, N> inv_d;
@@ -94,7 +94,7 @@ template <int N, class T, class MM>
 }
 
 /// With M = W·Wᵀ, W = L·√D: a = W⁻¹·r (forward) and a = W⁻ᵀ·r (backward),
-/// the halves of a solve (a loop scene's constraint solve, loops.hpp).
+/// the halves of a solve (a loop scene's constraint solve, loop_solve.hpp).
 /// sqrt_inv_d holds 1/√d_j.
 template <int N, class T, class MM>
 inline void ldlt_forward_half(const MM& M, const std::array<T, N>& sqrt_inv_d, const T* r, T* a) {

@@ -101,7 +101,7 @@ typename S::state_type neutral_state(const S& scene) {
 
 /// Keeps every joint's coordinates valid (a quaternion back to unit norm)
 /// and, in a scene with loops, (q, v) on the loops' constraints (Newton on
-/// Φ(q) = 0, then G·v = 0, each the least change: dynamics/loops.hpp): a
+/// Φ(q) = 0, then G·v = 0, each the least change: dynamics/loop_solve.hpp): a
 /// projection between steps (integrate_projected does it after each step).
 template <class S, class State>
 void normalize(const S& scene, State& x) {

@@ -1,0 +1,352 @@
+// The loops' constrained accelerations and the projection onto their
+// constraints (the constraints themselves: loops.hpp).
+//
+// The accelerations (forward_dynamics.hpp) solve
+//
+//   M·v̇ + b = τ + Gᵀ·λ,   G·v̇ = −Ġ·v
+//
+// by the least change of the tree's accelerations y = M⁻¹·(τ − b) in the
+// kinetic-energy norm, on a QR of B = W⁻¹·Gᵀ (M = W·Wᵀ) whose divisions are
+// damped where a row vanishes or repeats others: a singular position (a
+// parallelogram four-bar lined up) is passed without dividing by zero
+// (constrained_accelerations, docs/loops.md).
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "flange/dynamics/ldlt.hpp"
+#include "flange/dynamics/loops.hpp"
+
+namespace flange::detail {
+
+/// The scene's size: the largest distance of a frame from its link's origin.
+template <class S>
+double characteristic_length(const S& scene) {
+  double L = 0;
+  for (const auto& o : scene.model().set_offset) L = std::max(L, o.norm());
+  return L > 0 ? L : 1.0;
+}
+/// A length scale for the projection's tolerance: the scene's size, at least 1 m.
+template <class S>
+double length_scale(const S& scene) {
+  return std::max(1.0, characteristic_length(scene));
+}
+
+/// 1/L for a translation row (metres), 1 for a rotation row: G's rows made
+/// comparable, to tell a row that vanishes (a singular position) from one
+/// that is merely small in its units.
+template <class S>
+std::array<double, n_constraints<S>()> row_units(const S& scene) {
+  std::array<double, n_constraints<S>()> u{};
+  const double inv_L = 1 / characteristic_length(scene);
+  for_cuts<S>([&](auto k) {
+    using CI = cut_info<S, decltype(k)::value>;
+    constexpr int r0 = cut_row<S, decltype(k)::value>();
+    for (int i = 0; i < CI::rows; ++i) u[r0 + i] = i < CI::translation_rows ? inv_L : 1.0;
+  });
+  return u;
+}
+
+/// Pivots of G·M⁻¹·Gᵀ (or G·Gᵀ) at or below this fraction of the largest
+/// diagonal entry are left out: directions where the constraints are
+/// redundant at this position. Round-off in a kept pivot is amplified by at
+/// most 1/tolerance, so λ keeps about six digits next to a singular position.
+inline constexpr double constraint_pivot_tolerance = 1e-10;
+
+/// Solves A·x = b for a symmetric positive-semidefinite A by LDLᵀ with
+/// diagonal pivoting, stopping at the first pivot at or below
+/// constraint_pivot_tolerance times A's largest diagonal entry: the rest of
+/// x is zero. When b is in A's range the result solves A·x = b. Returns the
+/// rank found. A is overwritten.
+template <int M, class T>
+int solve_semidefinite(Eigen::Matrix<T, M, M>& A, const T* b, T* x) {
+  std::array<int, M> p;
+  T amax(0);
+  for (int i = 0; i < M; ++i) {
+    p[i] = i;
+    if (A(i, i) > amax) amax = A(i, i);
+  }
+  Eigen::Matrix<T, M, M> L;
+  std::array<T, M> d;
+  int rank = 0;
+  for (int j = 0; j < M; ++j) {
+    int best = j;
+    for (int i = j + 1; i < M; ++i)
+      if (A(p[i], p[i]) > A(p[best], p[best])) best = i;
+    std::swap(p[j], p[best]);
+    const T dj = A(p[j], p[j]);
+    if (!(dj > T(constraint_pivot_tolerance) * amax)) break;
+    d[j] = dj;
+    rank = j + 1;
+    // L's rows are kept by original index, so that later swaps of p do not move them.
+    for (int i = j + 1; i < M; ++i) L(p[i], j) = A(p[i], p[j]) / dj;
+    for (int i = j + 1; i < M; ++i)
+      for (int k = j + 1; k < M; ++k) A(p[i], p[k]) -= L(p[i], j) * L(p[k], j) * dj;
+  }
+  std::array<T, M> c;
+  for (int i = 0; i < rank; ++i) {
+    c[i] = b[p[i]];
+    for (int k = 0; k < i; ++k) c[i] -= L(p[i], k) * c[k];
+  }
+  for (int i = 0; i < rank; ++i) c[i] /= d[i];
+  for (int i = rank - 1; i >= 0; --i)
+    for (int k = i + 1; k < rank; ++k) c[i] -= L(p[k], i) * c[k];
+  for (int i = 0; i < M; ++i) x[p[i]] = i < rank ? c[i] : T(0);
+  return rank;
+}
+
+/// The constraint solve's damping μ, relative to each column's own norm
+/// ‖B_c‖ (so R_jj/‖B_c‖ measures how far row c is from depending on the
+/// rows before it, whatever the masses and units), and its refinement
+/// sweeps: each sweep shrinks a direction's error by μ²/(R_jj²/‖B_c‖² + μ²),
+/// so at a regular position (R_jj ≳ 0.05·‖B_c‖) four sweeps reach 1e-10,
+/// while a direction whose R_jj vanishes (a singular position) stays bounded.
+/// Chosen by measurement (docs/loops.md): the parallelogram four-bar through
+/// 78 flat positions, and the regular four-bar's energy.
+inline constexpr double constraint_damping = 3e-3;
+inline constexpr int constraint_sweeps = 4;
+
+/// v̇ for the constrained equations of motion, given the factors of M
+/// (ldlt.hpp) and y = M⁻¹·(τ − b).
+///
+/// With M = W·Wᵀ (W = L·√D) and z = Wᵀ·v̇, the accelerations are the least
+/// change ‖z − Wᵀ·y‖ with Bᵀ·z = γ = −Ġ·v, B = W⁻¹·Gᵀ. Modified Gram–Schmidt
+/// with column pivoting gives B·P = Q·R, and z = Wᵀ·y + Q·w with
+/// R₁₁ᵀ·(Qᵀ·Wᵀ·y + w) = (Pᵀ·γ): v̇ = y + W⁻ᵀ·Q·w. The triangular solve
+/// divides by R_jj damped, R_jj / (R_jj² + μ²), refined by a few sweeps:
+/// a direction in which the constraints are (nearly) redundant, at a
+/// singular position, is not divided by its vanishing R_jj. Working on B
+/// rather than on G·M⁻¹·Gᵀ = Bᵀ·B keeps the conditioning to cond(B).
+///
+/// With lambda given, also the constraint forces λ (row by row: Gᵀ·λ is
+/// their generalized force), from R₁₁·(Pᵀ·λ) = Qᵀ·(z − Wᵀ·y).
+template <class S, class T, class MM, class Motions>
+void constrained_accelerations(const S& scene, const Motions& motions, const MM& Mf, const ldlt_pivots<S::n_v, T>& f,
+                               const T* v, const T* y, T* vdot, T* lambda = nullptr) {
+  using std::sqrt;
+  constexpr int n = S::n_v, m = n_constraints<S>();
+  const auto k = loop_kinematics_at<S>(scene, motions, v);
+  std::array<T, n> s;
+  for (int i = 0; i < n; ++i) s[i] = sqrt(f.inv_d[i]);
+  std::array<std::array<T, n>, m> B;
+  std::array<T, m> gamma, norm2;
+  std::array<int, m> p;
+  for (int c = 0; c < m; ++c) {
+    std::array<T, n> g;
+    for (int i = 0; i < n; ++i) g[i] = k.G(c, i);
+    ldlt_forward_half<n>(Mf, s, g.data(), B[c].data());
+    gamma[c] = -k.bias[c];
+    p[c] = c;
+    norm2[c] = T(0);
+    for (int i = 0; i < n; ++i) norm2[c] += B[c][i] * B[c][i];
+  }
+  T largest(0);
+  // Each column's damping yardstick: its own squared norm in B, raised by
+  // how small its row of G is against the largest (rows in comparable units):
+  // a row that vanishes at a singular position is damped, a row that is only
+  // small in B because of the masses is not.
+  std::array<T, m> own = norm2;
+  {
+    const auto units = row_units(scene);
+    std::array<T, m> g2;
+    T g2max(0);
+    for (int c = 0; c < m; ++c) {
+      g2[c] = T(0);
+      for (int i = 0; i < n; ++i) g2[c] += k.G(c, i) * k.G(c, i);
+      g2[c] *= T(units[c] * units[c]);
+      if (g2[c] > g2max) g2max = g2[c];
+    }
+    for (int c = 0; c < m; ++c)
+      if (g2[c] * T(1e30) > g2max) own[c] = own[c] * g2max / g2[c];
+      else own[c] = T(1e300);  // a row of zeros: never divided by
+  }
+  for (int c = 0; c < m; ++c)
+    if (norm2[c] > largest) largest = norm2[c];
+  // Q's columns overwrite B's; R's row j is pivot step j, its columns are kept
+  // by original index (later swaps of p must not move them).
+  std::array<std::array<T, m>, m> R;
+  int rank = 0;
+  for (int j = 0; j < m; ++j) {
+    int best = j;
+    for (int c = j + 1; c < m; ++c)
+      if (norm2[p[c]] > norm2[p[best]]) best = c;
+    std::swap(p[j], p[best]);
+    const int cj = p[j];
+    T nn(0);
+    for (int i = 0; i < n; ++i) nn += B[cj][i] * B[cj][i];
+    if (!(nn > T(1e-30) * largest)) break;  // exactly dependent: nothing left to damp
+    const T r = sqrt(nn);
+    R[j][cj] = r;
+    for (int i = 0; i < n; ++i) B[cj][i] /= r;
+    for (int c = j + 1; c < m; ++c) {
+      const int cc = p[c];
+      T d(0);
+      for (int i = 0; i < n; ++i) d += B[cj][i] * B[cc][i];
+      R[j][cc] = d;
+      for (int i = 0; i < n; ++i) B[cc][i] -= d * B[cj][i];
+      norm2[cc] = T(0);
+      for (int i = 0; i < n; ++i) norm2[cc] += B[cc][i] * B[cc][i];
+    }
+    rank = j + 1;
+  }
+  // z0 = Wᵀ·y = √D·Lᵀ·y, and u = Qᵀ·z0 + w from R₁₁ᵀ·u = (Pᵀ·γ)₁.
+  std::array<T, n> z0;
+  for (int i = 0; i < n; ++i) {
+    T x = y[i];
+    for (int kk = i + 1; kk < n; ++kk) x += Mf(kk, i) * y[kk];
+    z0[i] = x / s[i];
+  }
+  std::array<T, m> u{}, res, du;
+  for (int sweep = 0; sweep < constraint_sweeps; ++sweep) {
+    for (int j = 0; j < rank; ++j) {  // res = (Pᵀ·γ)₁ − R₁₁ᵀ·u
+      T x = gamma[p[j]];
+      for (int i = 0; i <= j; ++i) x -= R[i][p[j]] * u[i];
+      res[j] = x;
+    }
+    for (int j = 0; j < rank; ++j) {  // R₁₁ᵀ·du = res, each division damped
+      T x = res[j];
+      for (int i = 0; i < j; ++i) x -= R[i][p[j]] * du[i];
+      const T rjj = R[j][p[j]];
+      du[j] = x * rjj / (rjj * rjj + T(constraint_damping * constraint_damping) * own[p[j]]);
+    }
+    for (int j = 0; j < rank; ++j) u[j] += du[j];
+  }
+  std::array<T, n> dz;
+  std::array<T, m> w;
+  for (int i = 0; i < n; ++i) dz[i] = T(0);
+  for (int j = 0; j < rank; ++j) {
+    T qz(0);
+    for (int i = 0; i < n; ++i) qz += B[p[j]][i] * z0[i];
+    w[j] = u[j] - qz;
+    for (int i = 0; i < n; ++i) dz[i] += w[j] * B[p[j]][i];
+  }
+  if (lambda) {
+    for (int j = m - 1; j >= 0; --j) {
+      if (j >= rank) {
+        lambda[p[j]] = T(0);
+        continue;
+      }
+      T x = w[j];
+      for (int c = j + 1; c < rank; ++c) x -= R[j][p[c]] * lambda[p[c]];
+      lambda[p[j]] = x / R[j][p[j]];
+    }
+  }
+  std::array<T, n> dv;
+  ldlt_backward_half<n>(Mf, s, dz.data(), dv.data());
+  for (int i = 0; i < n; ++i) vdot[i] = y[i] + dv[i];
+}
+
+/// The outcome of a projection onto the loops' constraints.
+struct closure {
+  double phi = 0;        ///< max |Φ_i| left (metres for translation rows, radians for rotation rows)
+  double phid = 0;       ///< max |(G·v)_i| left
+  int iterations = 0;    ///< Newton steps on Φ
+  int worst_row = -1;    ///< the row of the largest |Φ_i|
+};
+
+/// The cut whose rows hold constraint row i.
+template <class S>
+constexpr int cut_of_row(int i) {
+  int k = 0;
+  [&]<int... K>(std::integer_sequence<int, K...>) {
+    ((i >= cut_row<S, K>() && i < cut_row<S, K>() + cut_info<S, K>::rows ? k = K : 0), ...);
+  }(std::make_integer_sequence<int, S::tree.n_cuts>{});
+  return k;
+}
+
+/// Moves (q, v) onto the loops' constraints, changing only the rates i with
+/// free[i] (and their joints' coordinates): Newton steps on Φ(q) = 0, each
+/// the least change Δv = G_fᵀ·(G_f·G_fᵀ)⁺·(−Φ) applied through the joints'
+/// q̇ (and normalize), until |Φ| stops shrinking or is at round-off; then
+/// v ← v + G_fᵀ·(G_f·G_fᵀ)⁺·(−G·v). Reports what is left; the caller judges it.
+template <class S>
+closure project_onto_loops(const S& scene, double* q, double* v, const std::array<bool, S::n_v>& free,
+                           int max_iterations = 50) {
+  constexpr int n = S::n_v, m = n_constraints<S>();
+  closure r;
+  if constexpr (m > 0) {
+    const double tol = 8 * std::numeric_limits<double>::epsilon() * length_scale(scene);
+    std::array<double, n> zero{};
+    auto masked = [&](const loop_terms<S, double>& k) {
+      Eigen::Matrix<double, m, n> G = k.G;
+      for (int j = 0; j < n; ++j)
+        if (!free[j]) G.col(j).setZero();
+      return G;
+    };
+    // Δv = G_fᵀ·(G_f·G_fᵀ)⁺·rhs
+    auto least_change = [&](const Eigen::Matrix<double, m, n>& G, const std::array<double, m>& rhs) {
+      Eigen::Matrix<double, m, m> A = G * G.transpose();
+      std::array<double, m> mu;
+      solve_semidefinite<m>(A, rhs.data(), mu.data());
+      Eigen::Matrix<double, n, 1> dv = G.transpose() * Eigen::Map<const Eigen::Matrix<double, m, 1>>(mu.data());
+      return dv;
+    };
+    auto worst = [&](const std::array<double, m>& x, int* row = nullptr) {
+      double w = 0;
+      for (int i = 0; i < m; ++i)
+        if (!(std::abs(x[i]) <= w)) {
+          w = std::abs(x[i]);
+          if (row) *row = i;
+        }
+      return w;
+    };
+    auto norm2 = [](const std::array<double, m>& x) {
+      double s = 0;
+      for (double e : x) s += e * e;
+      return s;
+    };
+    auto k = loop_kinematics<S>(scene, q, zero.data());
+    r.phi = worst(k.phi, &r.worst_row);
+    // Newton with backtracking: a step that does not shrink |Φ| is halved
+    // (far from the solution a full step can overshoot), up to 30 times.
+    while (r.phi > tol && r.iterations < max_iterations) {
+      std::array<double, m> rhs;
+      for (int i = 0; i < m; ++i) rhs[i] = -k.phi[i];
+      const auto dv = least_change(masked(k), rhs);
+      std::array<double, S::n_q> q0;
+      std::copy(q, q + S::n_q, q0.begin());
+      bool shrank = false;
+      for (double alpha = 1; alpha > 1e-9 && !shrank; alpha /= 2) {
+        std::copy(q0.begin(), q0.end(), q);
+        std::array<double, n> step;
+        for (int j = 0; j < n; ++j) step[j] = alpha * dv[j];
+        std::array<double, S::n_q> dq{};
+        for_links<S>([&](auto l) {
+          using LI = link_info<S, decltype(l)::value>;
+          const auto& j = scene.template component<LI::joint>();
+          j.qdot(q + LI::q, step.data() + LI::v, dq.data() + LI::q);
+          for (int i = 0; i < LI::nq; ++i) q[LI::q + i] += dq[LI::q + i];
+          j.normalize(q + LI::q);
+        });
+        const auto kk = loop_kinematics<S>(scene, q, zero.data());
+        if (norm2(kk.phi) < norm2(k.phi)) {  // the merit is |Φ|₂: Newton's step is a descent direction for it
+          shrank = true;
+          k = kk;
+          r.phi = worst(k.phi, &r.worst_row);
+        }
+      }
+      ++r.iterations;
+      if (!shrank) {  // a minimum of |Φ| that is not zero: the loop cannot close here
+        std::copy(q0.begin(), q0.end(), q);
+        break;
+      }
+    }
+    std::array<double, m> gv;
+    for (int i = 0; i < m; ++i) {
+      gv[i] = 0;
+      for (int j = 0; j < n; ++j) gv[i] -= k.G(i, j) * v[j];
+    }
+    const auto dv = least_change(masked(k), gv);
+    for (int j = 0; j < n; ++j) v[j] += dv[j];
+    for (int i = 0; i < m; ++i) {
+      gv[i] = 0;
+      for (int j = 0; j < n; ++j) gv[i] += k.G(i, j) * v[j];
+    }
+    r.phid = worst(gv);
+  }
+  return r;
+}
+
+}  // namespace flange::detail
