@@ -176,3 +176,27 @@ TEST_CASE("the 3-D joints refuse bad axes, orientations and quaternions, naming 
   normalize(top, x);
   CHECK_NOTHROW(checked(top, b)(x, dx, 0.0));
 }
+
+TEST_CASE("a diverged (NaN) state is reported as such, not as a singular mass matrix") {
+  // The crane's mass matrix depends on the rope angle: a NaN angle makes
+  // every pivot NaN, and the message names the state, not a joint.
+  const auto crane = models::gantry_crane();
+  std::array<double, 4> x{0.0, not_a_number, 0.0, 1.0}, dx;
+  CHECK_THROWS_WITH(crane(x, dx, 4.95), Contains("the state is not finite at t = 4.95") && Contains("diverged") &&
+                                            !Contains("singular mass matrix"));
+}
+
+TEST_CASE("the natural one-liners compile: a temporary budget, an integral time") {
+  const auto arm = models::robot_arm();
+  std::array<double, 2> x{0.5, 0.0}, dx;
+  const auto sys = checked(arm, budget{.max_rhs_evals = 3});
+  auto copy = sys;  // Odeint copies systems: the copies share one budget
+  sys(x, dx, 0.0);
+  copy(x, dx, 0.0);
+  sys(x, dx, 0.0);
+  CHECK(sys.b->rhs_evals == 3);
+  CHECK_THROWS_WITH(copy(x, dx, 0.0), Contains("the budget of 3 derivative evaluations is spent"));
+  const auto sol = recover(arm, 0, x);  // 0, not 0.0
+  CHECK(sol.t == 0.0);
+  CHECK(sol.energy() == recover(arm, 0.0, x).energy());
+}

@@ -58,6 +58,15 @@ constexpr std::pair<std::string_view, int> rate_owner(int i) {
 template <class S, class T>
 [[noreturn, gnu::cold, gnu::noinline]] void singular_mass_matrix(const pivot_report<T>& p, const T& t, const T* q,
                                                                 const T* v) {
+  bool finite = true;
+  for (int i = 0; i < S::n_q; ++i) finite = finite && std::isfinite(static_cast<double>(q[i]));
+  for (int i = 0; i < S::n_v; ++i) finite = finite && std::isfinite(static_cast<double>(v[i]));
+  if (!finite)  // a NaN state fails every pivot test; the true reason is the state
+    throw simulation_error(concat("flange: the state is not finite at t = ", static_cast<double>(t), ", ",
+                                  describe_state(q, S::n_q, v, S::n_v),
+                                  ": the integration diverged before this evaluation (a step too large for the "
+                                  "stepper's stability, or an input that returned NaN)"),
+                           static_cast<double>(t));
   const double d = static_cast<double>(p.d), scale = static_cast<double>(p.scale);
   const auto [joint, k] = rate_owner<S>(p.index);
   const std::string why =

@@ -191,6 +191,7 @@ struct acceleration_pass {
 }  // namespace detail
 
 template <class S, class T = double, class State>
+  requires(!std::is_integral_v<T>)
 [[nodiscard]] dae_solution<S, T> recover(const S& scene, const T& t, const State& x) {
   constexpr int NL = S::tree.n_links, NF = S::n_frames;
   constexpr auto& tree = S::tree;
@@ -392,6 +393,13 @@ template <class S, class T = double, class State>
     }
   });
   return sol;
+}
+
+/// recover(scene, 0, x): an integral time is a time in seconds.
+template <class S, class I, class State>
+  requires std::is_integral_v<I>
+[[nodiscard]] dae_solution<S, double> recover(const S& scene, I t, const State& x) {
+  return recover(scene, static_cast<double>(t), x);
 }
 
 /// max |F(t, y, ẏ)| over the rows, relative to max(1, max |y|, max |ẏ|): the

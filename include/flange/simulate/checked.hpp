@@ -17,6 +17,7 @@
 #pragma once
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 #include "flange/errors.hpp"
@@ -51,6 +52,7 @@ template <class S>
 struct checked_system {
   const S* scene;
   budget* b;
+  std::shared_ptr<budget> owned{};  ///< the budget, when checked() was given a temporary one
   template <class State, class T>
   void operator()(const State& x, State& dxdt, const T t) const {
     if (++b->rhs_evals > b->max_rhs_evals) [[unlikely]]
@@ -88,6 +90,15 @@ struct checked_system {
 template <class S>
 checked_system<S> checked(const S& scene, budget& b) {
   return {&scene, &b};
+}
+/// The same with a budget of its own, shared by the system's copies (the
+/// one-liner checked(scene, budget{.max_rhs_evals = 1e5})). Allocated once,
+/// here, never while stepping.
+template <class S>
+checked_system<S> checked(const S& scene, budget&& b) {
+  auto owned = std::make_shared<budget>(b);
+  budget* raw = owned.get();
+  return {&scene, raw, std::move(owned)};
 }
 
 }  // namespace flange
