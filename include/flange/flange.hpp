@@ -33,3 +33,4 @@
 #include "flange/simulate/jacobian.hpp"
 #include "flange/simulate/checked.hpp"
 #include "flange/simulate/projected.hpp"
+#include "flange/simulate/simulate.hpp"

@@ -1,7 +1,8 @@
 # Runs one half of a compile-fail pair.
 #   MODE=ok: SRC must compile.
 #   MODE=ko: SRC with -DFLANGE_KO must fail, and the compiler output must
-#            contain every string in EXPECT (the diagnostic and its culprit).
+#            contain every string in EXPECT (the diagnostic and its culprit),
+#            with exactly one error line and at most 25 lines in all.
 set(args -std=c++20 -fsyntax-only ${INCLUDES} ${SRC})
 if(MODE STREQUAL "ko")
   list(APPEND args -DFLANGE_KO)
@@ -23,7 +24,16 @@ foreach(e IN LISTS EXPECT)
     message(FATAL_ERROR "the ko half failed, but its output lacks\n  ${e}\noutput:\n${all}")
   endif()
 endforeach()
-# One diagnostic, not a cascade of unrelated errors.
+# One diagnostic, not a cascade of unrelated errors, and short enough to
+# read: one error line, and at most 25 lines of compiler output in all.
 string(REGEX MATCHALL "error:" errors "${all}")
 list(LENGTH errors n)
-message(STATUS "refused as expected (${n} error lines)")
+string(REGEX MATCHALL "\n" newlines "${all}")
+list(LENGTH newlines lines)
+if(NOT n EQUAL 1)
+  message(FATAL_ERROR "the ko half gave ${n} errors, not one:\n${all}")
+endif()
+if(lines GREATER 25)
+  message(FATAL_ERROR "the ko half's output is ${lines} lines, more than 25:\n${all}")
+endif()
+message(STATUS "refused as expected (1 error, ${lines} lines)")

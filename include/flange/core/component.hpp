@@ -145,6 +145,13 @@ In&& take_input(In&& in) {
 template <class In>
 inline constexpr bool is_constant_input = std::is_arithmetic_v<In> || std::is_base_of_v<Eigen::EigenBase<In>, In>;
 
+template <class In>
+struct input_written_for_double {
+  static_assert(always_false<In>,
+                "flange: this input is written for double, but the dynamics run on another scalar (dual numbers "
+                "for a Jacobian, or long double); write it generic, [](auto t) or [](auto t, const auto& x)");
+};
+
 template <class T, class In, class X>
   requires state_of<X, T>
 auto eval_input(const In& in, const T& t, const X& x) {
@@ -152,12 +159,15 @@ auto eval_input(const In& in, const T& t, const X& x) {
   else if constexpr (std::is_invocable_v<const In&, const T&>) return expr::detail::cast<T>(in(t));
   else if constexpr (std::is_invocable_v<const In&, const T&, const X&>)
     return expr::detail::cast<T>(in(t, x));
-  else if constexpr (std::is_invocable_v<const In&, double> ||
-                     std::is_invocable_v<const In&, double, const joint_state<double>&>)
-    static_assert(always_false<In>,
-                  "flange: this input is written for double, but the dynamics run on another scalar (dual numbers "
-                  "for a Jacobian, or long double); write it generic, [](auto t) or [](auto t, const auto& x)");
-  else static_assert(always_false<In>, "flange: an input is a number, an Eigen vector, a callable f(t) or f(t, x)");
+  // Written for double only: one error, and a value of the input's own kind
+  // (a number or a vector) so that nothing else fails after it.
+  else if constexpr (std::is_invocable_v<const In&, double>) {
+    (void)sizeof(input_written_for_double<In>);
+    return expr::detail::cast<T>(std::invoke_result_t<const In&, double>{});
+  } else if constexpr (std::is_invocable_v<const In&, double, const joint_state<double>&>) {
+    (void)sizeof(input_written_for_double<In>);
+    return expr::detail::cast<T>(std::invoke_result_t<const In&, double, const joint_state<double>&>{});
+  } else static_assert(always_false<In>, "flange: an input is a number, an Eigen vector, a callable f(t) or f(t, x)");
 }
 
 // ------------------------------------------------------------ validation

@@ -196,10 +196,14 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
   }
 
  public:
-  static_assert(report_bad_name<topology.bad_name_connection>());
-  static_assert((detail::report<topology.self_connection, diagnostic::frame_listed_twice_in_connection, Ks...>()));
-  static_assert((detail::report<topology.redundant_connection, diagnostic::frame_connected_twice_in_one_set, Ks...>()));
+  // A name given twice comes first, and alone: connections naming it reach
+  // only the first component of that name, so the redundant connection and
+  // the cut-off component that follow are its symptoms, not more mistakes.
   static_assert((detail::report<topology.duplicate_name, diagnostic::duplicate_component_name, Cs...>()));
+  static_assert(report_bad_name<topology.duplicate_name < 0 ? topology.bad_name_connection : -1>());
+  static_assert((detail::report<topology.self_connection, diagnostic::frame_listed_twice_in_connection, Ks...>()));
+  static_assert((detail::report<topology.duplicate_name < 0 ? topology.redundant_connection : -1,
+                                diagnostic::frame_connected_twice_in_one_set, Ks...>()));
   static_assert((detail::report<topology.n_worlds == 0 ? 0 : -1, diagnostic::no_world, detail::type_list<Cs...>>()));
   static_assert((detail::report<topology.second_world, diagnostic::two_worlds, Cs...>()));
   /// Frame k of component c that no connection names (−1 if none).
@@ -231,7 +235,7 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
   // Only when the connections themselves were fine: a misspelt one leaves
   // its component unreached, and that is not a second mistake.
   static_assert(report_cut_off<(topology.n_worlds == 1 && topology.bad_name_connection < 0 &&
-                                        topology.self_connection < 0
+                                        topology.self_connection < 0 && topology.duplicate_name < 0
                                     ? topology.unreached
                                     : -1),
                                diagnostic::not_connected_to_world>());
