@@ -117,7 +117,6 @@ void normalize(const S& scene, State& x) {
   }
 }
 
-
 namespace detail {
 /// The joint named Name in scene S, checked at compile time (a misspelt
 /// name is one error listing the valid ones, scene/named_state.hpp).
