@@ -74,10 +74,14 @@ struct dae_solution {
 
   [[nodiscard]] T potential() const { return gravity_potential + elastic_potential; }
   [[nodiscard]] T energy() const { return kinetic + potential(); }
-  /// The frame named "component.frame".
-  [[nodiscard]] const frame_kinematics<T>& frame(std::string_view name) const { return frames[index(name)]; }
-  /// The cut force and torque at the frame named "component.frame".
-  [[nodiscard]] const wrench<T>& cut_at(std::string_view name) const { return cut[index(name)]; }
+  /// The frame named "component.frame". On a temporary solution
+  /// (recover(…).frame(…)) a copy, so that `const auto& f = recover(…).frame(…)`
+  /// does not dangle (AddressSanitizer found one in a test).
+  [[nodiscard]] const frame_kinematics<T>& frame(std::string_view name) const& { return frames[index(name)]; }
+  [[nodiscard]] frame_kinematics<T> frame(std::string_view name) && { return frames[index(name)]; }
+  /// The cut force and torque at the frame named "component.frame" (a copy on a temporary).
+  [[nodiscard]] const wrench<T>& cut_at(std::string_view name) const& { return cut[index(name)]; }
+  [[nodiscard]] wrench<T> cut_at(std::string_view name) && { return cut[index(name)]; }
   /// A component's internal variable by name, found at compile time:
   /// sol.internal<"buffer", "f">() is a SpringDamper's tension,
   /// sol.internal<"joint", "R_rel">() a joint's relative rotation. A T, a

@@ -245,8 +245,11 @@ class study {
     X last{};
     bool have_last = false;
     try {
-      auto [scene, x] = setup_(cases[index]);
-      const S& s = scene;
+      // Not a structured binding: lambdas below capture x (C++20 allows it,
+      // clang 14 does not).
+      auto made = setup_(cases[index]);
+      const S& s = std::get<0>(made);
+      X& x = std::get<1>(made);
       auto recs = recs_;  // this case's recorders
       auto sys = checked(s, b);
       auto st = Method::template make<X>(in_.abs_tol, in_.rel_tol);

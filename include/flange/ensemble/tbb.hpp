@@ -25,15 +25,16 @@
 namespace flange::ensemble {
 
 /// Runs a block's cases in parallel on `threads` TBB threads (0: as many as
-/// the machine has cores). The arena is made once, at the first block, and
-/// kept by the policy (and its copies) for the next ones.
+/// the machine has cores). The arena is made with the policy and shared by
+/// its copies; TBB starts its threads at the first block (task_arena
+/// initialises itself once, safely, even when two threads run studies with
+/// one policy at the same time).
 struct tbb_threads {
   int threads = 0;
-  tbb_threads(int n = 0) : threads(n) {}  // NOLINT: tbb_threads{2} reads as "two threads"
+  tbb_threads(int n = 0)  // NOLINT: tbb_threads{2} reads as "two threads"
+      : threads(n), arena_(std::make_shared<tbb::task_arena>(n > 0 ? n : int(tbb::task_arena::automatic))) {}
   template <class F>
   void for_each(std::size_t n, F&& f) const {
-    if (!arena_)
-      arena_ = std::make_shared<tbb::task_arena>(threads > 0 ? threads : int(tbb::task_arena::automatic));
     arena_->execute([&] {
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
@@ -42,7 +43,7 @@ struct tbb_threads {
   }
 
  private:
-  mutable std::shared_ptr<tbb::task_arena> arena_;
+  std::shared_ptr<tbb::task_arena> arena_;
 };
 
 }  // namespace flange::ensemble

@@ -59,9 +59,12 @@ constexpr int find_root(std::array<int, M>& p, int i) {
 
 template <int NC, int NF, int NK>
 constexpr int find_frame(const scene_table<NC, NF, NK>& t, std::string_view s) {
-  const auto dot = s.find('.');
-  if (dot == std::string_view::npos) return -1;
-  const auto comp = s.substr(0, dot), frame = s.substr(dot + 1);
+  // A loop, not find/substr: with g++'s -fsanitize=undefined those carry
+  // null-pointer checks that are not constant expressions.
+  std::size_t dot = 0;
+  while (dot < s.size() && s[dot] != '.') ++dot;
+  if (dot == s.size()) return -1;
+  const std::string_view comp(s.data(), dot), frame(s.data() + dot + 1, s.size() - dot - 1);
   for (int c = 0; c < NC; ++c)
     if (t.names[c] == comp)
       for (int k = 0; k < t.nframes[c]; ++k)
