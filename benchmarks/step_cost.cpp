@@ -41,6 +41,24 @@ void rk4_steps(benchmark::State& st, const System& sys, State x) {
   }
 }
 
+/// One second of a run at tolerance 1e-8: flange::simulate (checked: every
+/// evaluation's state and derivative tested for finiteness, a budget
+/// counted, the step size watched) against the same dopri5 steps through
+/// the raw system with odeint::integrate_adaptive.
+template <bool Checked, class Scene, class State>
+void run_1s(benchmark::State& st, const Scene& sc, State x0) {
+  for (auto _ : st) {
+    State x = x0;
+    if constexpr (Checked) {
+      x = simulate(sc, x, 0.0, 1.0, {.tolerance = 1e-8, .dt = 1e-3});
+    } else {
+      odeint::integrate_adaptive(odeint::make_controlled(1e-8, 1e-8, odeint::runge_kutta_dopri5<State>()), sc, x,
+                                 0.0, 1.0, 1e-3);
+    }
+    benchmark::DoNotOptimize(x);
+  }
+}
+
 /// One evaluation of the full DAE residual F(t, y, ẏ) on a consistent point.
 template <class Scene, std::size_t N>
 void residual_eval(benchmark::State& st, const Scene& sc, std::array<double, N> x) {
@@ -180,6 +198,10 @@ void register_all() {
     static budget b;
     rk4_steps<A2, rk4_array<A2>>(s, checked(arm, b), arm_x);
   });
+  reg("robot_arm/simulate_1s/checked", [](benchmark::State& s) { run_1s<true>(s, arm, arm_x); });
+  reg("robot_arm/simulate_1s/raw", [](benchmark::State& s) { run_1s<false>(s, arm, arm_x); });
+  reg("gantry_crane/simulate_1s/checked", [](benchmark::State& s) { run_1s<true>(s, crane, crane_x); });
+  reg("gantry_crane/simulate_1s/raw", [](benchmark::State& s) { run_1s<false>(s, crane, crane_x); });
   reg("robot_arm/rk4_step_eigen/generated",
       [](benchmark::State& s) { rk4_steps<E2, rk4_eigen<E2>>(s, arm, E2(arm_x[0], arm_x[1])); });
   reg("robot_arm/rk4_step_eigen/handwritten",
@@ -255,6 +277,7 @@ int main(int argc, char** argv) {
   for (const char* scene : {"chain2_planar", "chain4_spatial", "chain8_spatial", "free_body", "legged"})
     ratio("algorithm", scene, "derivative", "newton_euler", "articulated_body");
   ratio("overhead", "robot_arm", "rk4_step_array", "checked", "generated");
+  for (const char* scene : {"robot_arm", "gantry_crane"}) ratio("overhead", scene, "simulate_1s", "checked", "raw");
   for (const char* scene : {"robot_arm", "gantry_crane"})
     ratio("jacobian", scene, "jacobian", "dual", "finite_difference");
   for (const auto& [name, ns] : rep.ns)

@@ -34,6 +34,27 @@ TEST_CASE("simulate follows the arm's one-coordinate equation of motion and cons
   CHECK(dE < 1e-9);
 }
 
+TEST_CASE("on a scene with nothing to project, simulate takes odeint::integrate_adaptive's steps, bit for bit") {
+  // Neither loops nor quaternions: no projection and no reset of dopri5's
+  // first-same-as-last derivative, so checking adds tests, not evaluations.
+  const auto crane = models::gantry_crane({}, 0.7);
+  using X = std::array<double, 4>;
+  STATIC_REQUIRE(!detail::needs_projection<decltype(crane)>());
+  const X x0{0.2, 0.4, 0.3, -0.5};
+  budget b;
+  X raw = x0;
+  const std::size_t raw_steps = odeint::integrate_adaptive(
+      odeint::make_controlled(1e-9, 1e-9, odeint::runge_kutta_dopri5<X>()), checked(crane, b), raw, 0.0, 3.0, 1e-3);
+  std::size_t steps = 0;
+  const X x = simulate(crane, x0, 0.0, 3.0, {.tolerance = 1e-9}, [&](const X&, double) { ++steps; });
+  CHECK(steps == raw_steps + 1);  // the observer also sees the start
+  for (int i = 0; i < 4; ++i) CHECK(x[i] == raw[i]);
+  // A quaternion joint has something to project.
+  const auto top = scene(World<"world">{}, Spherical<"ball">{}, Body<"b">({.m = 1, .J = Mat3d::Identity()}),
+                         connect<"world.frame_b", "ball.frame_a">, connect<"ball.frame_b", "b.frame_a">);
+  STATIC_REQUIRE(detail::needs_projection<decltype(top)>());
+}
+
 TEST_CASE("simulate keeps a loop closed") {
   const models::fourbar_params p;
   const auto fb = models::fourbar(p);

@@ -14,6 +14,7 @@
 //                                     frame_a faces the World, −1 otherwise
 //   qdot(q, v, qd)                    q̇ from v
 //   normalize(q)                      keeps q valid (a quaternion's norm); may do nothing
+//                                     (normalizes<J>() below says whether it does)
 //   relative_pose(q)                  frame_b's pose in frame_a (for cut forces and output)
 //   write_internals(q, v, set)        its DAE internals (φ, R_rel, …) and their rates
 //   read_state(get, q, v)             q and v back from those internals (the residual's inputs)
@@ -116,6 +117,16 @@ concept has_generalized_force = requires(const J& j, const double* p, double* ta
   j.generalized_force(0.0, x, p, p, tau);
 };
 }  // namespace detail
+
+/// Whether a joint's normalize(q) changes anything, so that a stepper must
+/// project between steps: a joint says so with `static constexpr bool
+/// normalizes`; by default, a joint whose coordinates outnumber its rates
+/// (a quaternion) does, and one with as many (angles, lengths) does not.
+template <class J>
+constexpr bool normalizes() {
+  if constexpr (requires { J::normalizes; }) return J::normalizes;
+  else return J::nq != J::nv;
+}
 
 /// The variables a joint writes (write_internals) receive their value and
 /// rate through set(i, value, rate), with value a scalar, a Vec3 or a Mat3.

@@ -8,7 +8,9 @@
 // After each accepted step, normalize(scene, x) (simulate/system.hpp) moves
 // (q, v) back onto Φ(q) = 0 and G·v = 0 by the least change; an FSAL
 // stepper (dopri5) is reset so that its stored derivative is not reused for
-// the moved state. Controlled steppers step adaptively, simple ones (rk4)
+// the moved state. A scene with neither loops nor quaternions has nothing to
+// project (detail::needs_projection): its steps are those of
+// odeint::integrate_adaptive, first-same-as-last evaluations kept. Controlled steppers step adaptively, simple ones (rk4)
 // with the fixed dt. The system stepped may be the scene or a wrapper around
 // it (checked(scene, b)). The observer sees the state at t0 and after each
 // step, as with odeint::integrate_adaptive.
@@ -35,8 +37,9 @@ std::size_t integrate_projected(Stepper stepper, System system, const S& scene, 
   static_assert(controlled || std::is_base_of_v<odeint::stepper_tag, category>,
                 "flange: integrate_projected takes a simple stepper (runge_kutta4) or a controlled one "
                 "(make_controlled); a dense-output stepper cannot be projected between its steps");
+  constexpr bool project = detail::needs_projection<S>();
   check_loops(scene, x);
-  normalize(scene, x);
+  if constexpr (project) normalize(scene, x);
   double t = t0;
   observer(x, t);
   std::size_t steps = 0;
@@ -51,12 +54,12 @@ std::size_t integrate_projected(Stepper stepper, System system, const S& scene, 
                                                 "double precision, or a non-smooth input)"),
                                  t);
       }
-      if constexpr (requires { stepper.reset(); }) stepper.reset();
+      if constexpr (project && requires { stepper.reset(); }) stepper.reset();
     } else {
       stepper.do_step(system, x, t, dt);
       t += dt;
     }
-    normalize(scene, x);
+    if constexpr (project) normalize(scene, x);
     ++steps;
     observer(x, t);
   }

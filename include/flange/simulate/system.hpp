@@ -99,6 +99,17 @@ typename S::state_type neutral_state(const S& scene) {
   return x;
 }
 
+namespace detail {
+/// Whether normalize(scene, x) can change x: the scene has loops, or a joint
+/// whose coordinates need keeping valid (a quaternion).
+template <class S>
+constexpr bool needs_projection() {
+  return has_loops<S> || []<int... L>(std::integer_sequence<int, L...>) {
+    return (false || ... || normalizes<typename S::template component_type<link_info<S, L + 1>::joint>>());
+  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+}
+}  // namespace detail
+
 /// Keeps every joint's coordinates valid (a quaternion back to unit norm)
 /// and, in a scene with loops, (q, v) on the loops' constraints (Newton on
 /// Φ(q) = 0, then G·v = 0, each the least change: dynamics/loop_solve.hpp): a
