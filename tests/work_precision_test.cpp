@@ -102,7 +102,7 @@ TEST_CASE("controlled steppers: the error falls as the tolerance tightens, and t
   sweep("bulirsch_stoer", [](double tol) { return odeint::bulirsch_stoer<X>(tol, tol); }, 0, 0);
 }
 
-TEST_CASE("rosenbrock4: the error falls as the tolerance tightens; each attempt costs one Jacobian") {
+TEST_CASE("rosenbrock4: the error falls as the tolerance tightens, and each attempt costs one Jacobian") {
   const auto s = oscillator();
   double previous = 1.0;
   for (double tol : {1e-4, 1e-7, 1e-10}) {

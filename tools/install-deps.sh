@@ -7,6 +7,8 @@
 #   tools/install-deps.sh --peers    also MuJoCo and Simbody, the work-precision study's peers
 #   tools/install-deps.sh --ensembles  also oneTBB, Boost.MPI and Open MPI, for parallel ensembles
 #   tools/install-deps.sh --urdf     also MuJoCo, which checks flange-urdf's scenes against the same URDF files
+#   tools/install-deps.sh --sanitizers  also clang 14, its sanitizer runtimes and libFuzzer
+#                                    (tools/sanitizers.sh)
 #   tools/install-deps.sh --viewer   also headless Chromium and npm, and three.js from npm into
 #                                    tools/viewer/node_modules (the trajectory pages inline it)
 # (the options may be given together.)
@@ -21,12 +23,13 @@ for arg in "$@"; do
     --peers) packages+=(libmujoco-dev libsimbody-dev) ;;
     --ensembles) packages+=(libtbb-dev libboost-mpi1.81-dev openmpi-bin) ;;
     --urdf) packages+=(libmujoco-dev) ;;
+    --sanitizers) packages+=(clang-14 libclang-rt-14-dev libfuzzer-14-dev) ;;
     --viewer)
       viewer=1
       packages+=(chromium-headless-shell)
       command -v npm >/dev/null || packages+=(npm)
       ;;
-    *) echo "install-deps: unknown option $arg (use --plots, --peers, --ensembles, --urdf, --viewer)" >&2; exit 2 ;;
+    *) echo "install-deps: unknown option $arg (use --plots, --peers, --ensembles, --urdf, --sanitizers, --viewer)" >&2; exit 2 ;;
   esac
 done
 missing=()

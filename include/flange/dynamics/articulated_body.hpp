@@ -195,7 +195,7 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
       Eigen::Matrix<T, nv, nv> Dinv;
       for (int k = 0; k < nv; ++k) {
         Eigen::Matrix<T, nv, nv> Dk = D;
-        std::array<T, nv> e{}, col;
+        std::array<T, nv> e{}, col{};
         e[k] = T(1);
         if (const auto p = solve_spd<nv>(Dk, e.data(), col.data(), w.scale.data()); p.index >= 0) [[unlikely]]
           throw simulation_error(concat("flange: singular articulated inertia at joint \"", S::table.names[LI::joint],
@@ -207,7 +207,21 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
       w.Dinv = Dinv;
       for (int k = 0; k < nv; ++k) w.u(k) = tau[LI::v + k];
       w.u -= w.S.transpose() * w.pA;
-      if constexpr (LI::parent != 0) {
+      if constexpr (LI::parent != 0 && nv == algebra_size<A>) {
+        // A joint that frees every direction (FreeMotion; a Planar joint in
+        // planar algebra) passes its parent no articulated inertia, and of
+        // the force only its own generalized force, S⁻ᵀ·τ. The general
+        // formula below reaches both only through cancellation (IA − U·D⁻¹·Uᵀ
+        // and pA − U·D⁻¹·Sᵀ·pA), whose round-off is that of the heavy child
+        // and can swamp a light parent (tests/hard_tree_test.cpp: masses
+        // from 1e-6 to 1e6 made a parent's articulated inertia negative).
+        if constexpr (has_generalized_force<typename LI::joint_type>) {
+          Eigen::Matrix<T, nv, 1> tj;
+          for (int k = 0; k < nv; ++k) tj(k) = tau[LI::v + k];
+          const dvec<A, T> pa = w.S.transpose().partialPivLu().solve(tj);
+          std::get<LI::parent - 1>(ws).pA += w.X.transpose() * pa;
+        }
+      } else if constexpr (LI::parent != 0) {
         auto& p = std::get<LI::parent - 1>(ws);
         const dmat<A, T> Ia = w.IA - w.U * w.Dinv * w.U.transpose();
         const dvec<A, T> pa = w.pA + Ia * w.c + w.U * (w.Dinv * w.u);

@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# Sanitizers and fuzzing, as CI runs them (docs/sanitizers.md, docs/fuzzing.md):
+#   1. AddressSanitizer + UndefinedBehaviorSanitizer (clang 14, -O1 -g, every
+#      check on, none recovered from) over the unit-test programs listed below,
+#      which between them include every public header and run every algorithm;
+#   2. ThreadSanitizer over tests/thread_safety_test.cpp (a scene and an
+#      ensemble study shared by four threads);
+#   3. the libFuzzer targets (fuzz/), each for FUZZ_SECONDS (60 by default)
+#      from the committed seed corpus, built with ASan + UBSan too.
+# Any finding fails the script. Needs tools/install-deps.sh --sanitizers.
+#
+#   tools/sanitizers.sh                  everything
+#   FUZZ_SECONDS=600 tools/sanitizers.sh a longer fuzz run
+#   tools/sanitizers.sh asan|tsan|fuzz   one part
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+out=${SAN_DIR:-$root/build-san}
+fuzz_seconds=${FUZZ_SECONDS:-60}
+jobs=${JOBS:-2}
+parts=${1:-all}
+cxx=${SAN_CXX:-clang++-14}
+
+# The ASan + UBSan subset (tests/*.cpp). Each program is a few GB and a few
+# minutes of compiler under ASan, so not all of them: these cover every
+# header (the umbrella header and every model, joint and force element) and
+# every algorithm (Newton–Euler, mass matrix and LDLᵀ, articulated body,
+# recovery and residual, loops and projection, dual-number Jacobian and
+# rosenbrock4, checked stepping and simulate, ensembles, viewer, no-heap).
+# The random trees of tree_test and tree_joints_test are the fuzz target's.
+asan_tests=(paper_equations_test force_elements_test joints_physics_test joints_equivalence_test loops_test
+            simulate_test parameters_test jacobian_test no_heap_test names_test body_shape_test
+            ensemble_test viewer_test thread_safety_test)
+
+say() { printf 'sanitizers: %s\n' "$*"; }
+elapsed() { echo $(( $(date +%s) - $1 ))s; }
+
+configure() {  # dir, flags, extra cmake args…
+  local dir=$1 flags=$2
+  shift 2
+  cmake -S "$root" -B "$dir" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=Debug \
+        -DCMAKE_CXX_FLAGS="-O1 -g -fno-omit-frame-pointer $flags" \
+        -DCMAKE_EXE_LINKER_FLAGS="$flags" -DFLANGE_BUILD_EXAMPLES=OFF -DFLANGE_BUILD_BENCHMARKS=OFF "$@" >/dev/null
+}
+
+run_asan() {
+  local t0; t0=$(date +%s)
+  local dir=$out/asan
+  configure "$dir" "-fsanitize=address,undefined -fno-sanitize-recover=all"
+  say "ASan + UBSan: building ${#asan_tests[@]} test programs with $cxx"
+  local targets=() known
+  known=$(cmake --build "$dir" --target help)
+  for t in "${asan_tests[@]}"; do
+    if grep -q "\.\.\. $t\$" <<<"$known"; then targets+=("$t"); else say "ASan + UBSan: $t is not configured here (oneTBB missing?), left out"; fi
+  done
+  cmake --build "$dir" -j"$jobs" --target "${targets[@]}" >"$dir/build.log" 2>&1 || { tail -50 "$dir/build.log"; exit 1; }
+  say "ASan + UBSan: built in $(elapsed "$t0")"
+  local t1; t1=$(date +%s)
+  export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:halt_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1}
+  export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+  for t in "${targets[@]}"; do
+    if ! "$dir/tests/$t" >"$dir/$t.log" 2>&1; then
+      tail -60 "$dir/$t.log"
+      say "ASan + UBSan: $t FAILED (log: $dir/$t.log)"
+      exit 1
+    fi
+    say "ASan + UBSan: $t passed ($(grep -Eo '[0-9]+ assertions? in [0-9]+ test cases?' "$dir/$t.log" | tail -1))"
+  done
+  say "ASan + UBSan: ${#targets[@]} programs passed, no finding (tests ran in $(elapsed "$t1"), in all $(elapsed "$t0"))"
+}
+
+run_tsan() {
+  local t0; t0=$(date +%s)
+  local dir=$out/tsan
+  configure "$dir" "-fsanitize=thread"
+  cmake --build "$dir" -j"$jobs" --target thread_safety_test >"$dir/build.log" 2>&1 || { tail -50 "$dir/build.log"; exit 1; }
+  export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:second_deadlock_stack=1}
+  if ! "$dir/tests/thread_safety_test" >"$dir/thread_safety_test.log" 2>&1; then
+    tail -80 "$dir/thread_safety_test.log"
+    say "ThreadSanitizer: thread_safety_test FAILED"
+    exit 1
+  fi
+  say "ThreadSanitizer: thread_safety_test passed, no data race ($(elapsed "$t0"))"
+}
+
+run_fuzz() {
+  local t0; t0=$(date +%s)
+  local dir=$out/fuzz
+  configure "$dir" "" -DFLANGE_BUILD_TESTS=OFF -DFLANGE_BUILD_FUZZERS=ON
+  cmake --build "$dir" -j"$jobs" --target scenes_fuzz urdf_fuzz >"$dir/build.log" 2>&1 || { tail -50 "$dir/build.log"; exit 1; }
+  say "fuzz: built in $(elapsed "$t0")"
+  for f in scenes urdf; do
+    local work=$dir/run_$f
+    rm -rf "$work" && mkdir -p "$work/corpus"
+    # New inputs go to the work corpus; the committed seeds are only read.
+    if ! (cd "$work" && "$dir/fuzz/${f}_fuzz" -max_total_time="$fuzz_seconds" -max_len=4096 -timeout=10 \
+            -rss_limit_mb=4096 -print_final_stats=1 corpus "$root/fuzz/corpus/$f" >"$work/log" 2>&1); then
+      tail -60 "$work/log"
+      say "fuzz: ${f}_fuzz found a failure; the input is in $work (crash-*, timeout-*, oom-*)"
+      exit 1
+    fi
+    say "fuzz: ${f}_fuzz ran $(grep -Eo 'Done [0-9]+ runs in [0-9]+ second' "$work/log") with no finding"
+  done
+}
+
+case $parts in
+  all) run_asan; run_tsan; run_fuzz ;;
+  asan) run_asan ;;
+  tsan) run_tsan ;;
+  fuzz) run_fuzz ;;
+  *) echo "usage: tools/sanitizers.sh [all|asan|tsan|fuzz]" >&2; exit 2 ;;
+esac
