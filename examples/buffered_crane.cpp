@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   double worst_residual = 0, max_tension = 0, max_swing = 0;
   const double T = 8.0;
   odeint::integrate_const(
-      odeint::make_dense_output(1e-10, 1e-10, odeint::runge_kutta_dopri5<Crane::state_type>()), crane, x, 0.0, T,
+      odeint::make_dense_output(1e-10, 1e-10, odeint::runge_kutta_dopri5<Crane::state_type>()), checked(crane, budget{}), x, 0.0, T,
       0.01, record(crane, [&](const auto& sol) {
         const double theta = sol.q[1] + std::numbers::pi / 2;
         // The buffer's length s and tension f are internals of its equations.

@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
   out.precision(12);
   double worst_freudenstein = 0, worst_phi = 0, torque_min = 1e300, torque_max = -1e300, force_max = 0;
   auto stepper = odeint::make_controlled(1e-10, 1e-10, odeint::runge_kutta_dopri5<S::state_type>());
-  const auto steps = integrate_projected(stepper, fb, x, 0.0, 5.0, 1e-3, [&](const S::state_type& y, double t) {
+  const auto steps = integrate_projected(stepper, checked(fb, budget{}), fb, x, 0.0, 5.0, 1e-3, [&](const S::state_type& y, double t) {
     const double th2 = y[0], th4 = y[0] + y[1] + y[2] - std::numbers::pi;
     const double ref = models::freudenstein_rocker(p, th2);
     const double tau = gain * (omega - y[3]);

@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
   auto stepper = odeint::make_dense_output(1e-10, 1e-10, odeint::runge_kutta_dopri5<Crane::state_type>());
   for (auto [t0, t1] : {std::pair{0.0, 1.0}, std::pair{1.0, 2.0}, std::pair{2.0, 10.0}}) {
     stepper.initialize(x, t0, 1e-3);
-    odeint::integrate_const(stepper, crane, x, t0, t1, 0.01, observe);
+    odeint::integrate_const(stepper, checked(crane, budget{}), x, t0, t1, 0.01, observe);  // fails loudly
   }
   std::cout << std::fixed << std::setprecision(4);
   std::cout << "flange gantry crane: " << Crane::n_equations << " equations, " << Crane::n_unknowns

@@ -75,7 +75,8 @@ int main(int argc, char** argv) {
         << s.cut_at("rod.frame_a").n.z() << ',' << bearing << '\n';
   });
   auto stepper = odeint::make_dense_output(1e-10, 1e-10, odeint::runge_kutta_dopri5<Arm::state_type>());
-  const std::size_t steps = odeint::integrate_const(stepper, arm, x, 0.0, 3.0, 0.001, observe);
+  // checked(): a NaN, a spent budget or a singular mass matrix throws with t and x.
+  const std::size_t steps = odeint::integrate_const(stepper, checked(arm, budget{}), x, 0.0, 3.0, 0.001, observe);
   const double e1 = recover(arm, 3.0, x).energy();
   if (html) page.write_html(html, viewer::three_js(), "flange: the paper's robot arm");
   // The motor's work by Simpson's rule on the 1 ms samples (an even number of

@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
   out.precision(12);
   double worst_x = 0, worst_v = 0, worst_a = 0, worst_e = 0;
   auto stepper = odeint::make_controlled(1e-12, 1e-12, odeint::runge_kutta_dopri5<S::state_type>());
-  const auto steps = integrate_projected(stepper, sc, x, 0.0, 5.0, 1e-3, [&](const S::state_type& y, double t) {
+  const auto steps = integrate_projected(stepper, checked(sc, budget{}), sc, x, 0.0, 5.0, 1e-3, [&](const S::state_type& y, double t) {
     S::state_type dy;
     sc(y, dy, t);
     const auto ref = models::piston(p, y[0]);
