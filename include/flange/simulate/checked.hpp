@@ -46,6 +46,16 @@ bool finite(const State& x) {
     if (!std::isfinite(static_cast<double>(x[i]))) return false;
   return true;
 }
+/// Throws simulation_error "flange: <why> at t = …, x = […]".
+template <class State, class T>
+[[noreturn, gnu::cold]] void fail_at(const std::string& why, const State& x, const T& t) {
+  throw simulation_error(concat("flange: ", why, " at t = ", static_cast<double>(t), ", ", describe(x)),
+                         static_cast<double>(t));
+}
+inline std::string budget_spent(long max_rhs_evals) {
+  return "the budget of " + std::to_string(max_rhs_evals) +
+         " derivative evaluations is spent (a stiff scene for an explicit stepper? try rosenbrock4)";
+}
 }  // namespace detail
 
 template <class S>
@@ -56,11 +66,9 @@ struct checked_system {
   template <class State, class T>
   void operator()(const State& x, State& dxdt, const T t) const {
     if (++b->rhs_evals > b->max_rhs_evals) [[unlikely]]
-      fail("the budget of " + std::to_string(b->max_rhs_evals) +
-               " derivative evaluations is spent (a stiff scene for an explicit stepper? try rosenbrock4)",
-           x, t);
+      detail::fail_at(detail::budget_spent(b->max_rhs_evals), x, t);
     if (!detail::finite(x)) [[unlikely]]
-      fail("the state is not finite", x, t);
+      detail::fail_at("the state is not finite", x, t);
     // Joint coordinates are checked at the first evaluation only: that is the
     // user's initial state. Later evaluations include a stepper's trial
     // stages, which may lie anywhere off the unit sphere before a step is
@@ -70,19 +78,12 @@ struct checked_system {
         check_coordinates(*scene, x);
         check_loops(*scene, x);
       } catch (const parameter_error& e) {
-        fail(e.what(), x, t);
+        detail::fail_at(e.what(), x, t);
       }
     }
     (*scene)(x, dxdt, t);
     if (!detail::finite(dxdt)) [[unlikely]]
-      fail("the derivative is not finite", x, t);
-  }
-
- private:
-  template <class State, class T>
-  [[noreturn, gnu::cold]] static void fail(const std::string& why, const State& x, const T& t) {
-    throw simulation_error(detail::concat("flange: ", why, " at t = ", static_cast<double>(t), ", ", detail::describe(x)),
-                           static_cast<double>(t));
+      detail::fail_at("the derivative is not finite", x, t);
   }
 };
 

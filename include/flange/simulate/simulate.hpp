@@ -3,13 +3,19 @@
 //   auto x1 = flange::simulate(arm, x0, 0.0, 10.0);                    // dopri5 at 1e-8
 //   auto x1 = flange::simulate(arm, x0, 0.0, 10.0, {.tolerance = 1e-12}, observer);
 //
-// It steps a controlled dopri5 through checked(scene, budget)
-// (checked.hpp) with a projection after every step (integrate_projected,
-// projected.hpp: loops closed, quaternions normalised), so a non-finite
-// state or derivative, a spent budget, a singular mass matrix, a loop left
-// open or a step size that collapses each throw, with the time, the state
-// and the reason. The raw Odeint system (the scene itself) stays for those
-// who want their own stepper; it checks nothing.
+// It steps a controlled dopri5 with a projection after every step
+// (integrate_projected, projected.hpp: loops closed, quaternions normalised;
+// nothing on a scene that has neither), and checks once per step, not at
+// every evaluation: the evaluations are counted against a budget, and each
+// accepted state must be finite (a NaN in any stage reaches the step's
+// result). When one is not, or the step size collapses, the step is replayed
+// through checked(scene, budget) (checked.hpp), whose first non-finite
+// evaluation names its own time, state and reason. So a non-finite state or
+// derivative, a spent budget, a singular mass matrix, a loop left open or a
+// step size that collapses each throw, with the time, the state and the
+// reason, for a few per cent of a step's cost (docs/performance.md). The raw
+// Odeint system (the scene itself) stays for those who want their own
+// stepper; it checks nothing.
 #pragma once
 #include <boost/numeric/odeint/integrate/null_observer.hpp>
 #include <boost/numeric/odeint/stepper/generation.hpp>
@@ -28,6 +34,50 @@ struct simulate_options {
   double dt = 1e-3;         ///< the first step's size
   long max_rhs_evals = 100'000'000;
 };
+
+namespace detail {
+/// The scene with its evaluations counted against a budget.
+template <class S>
+struct counted_system {
+  const S* scene;
+  long* evals;
+  long max_evals;
+  template <class State, class T>
+  void operator()(const State& x, State& dxdt, const T t) const {
+    if (++*evals > max_evals) [[unlikely]]
+      fail_at(budget_spent(max_evals), x, t);
+    (*scene)(x, dxdt, t);
+  }
+};
+
+/// simulate's check after each step, and the replay that names the reason.
+template <class S, class Stepper>
+struct checked_steps {
+  static constexpr bool wants_previous = true;
+  const S* scene;
+  Stepper fresh;  ///< an unused stepper like the one stepping, for replays
+  template <class State>
+  void after(const State& prev, double t_prev, double h, const State& x, double t) const {
+    if (finite(x)) [[likely]]
+      return;
+    replay(prev, t_prev, h);
+    fail_at(concat("the state is not finite after the step from t = ", t_prev, " (", describe(prev), ")"), x, t);
+  }
+  template <class State>
+  void collapsing(const State& x, double t, double h) const {
+    replay(x, t, h);  // a non-finite stage is the true reason, if there is one
+  }
+  /// The step from (x, t) of size h under per-evaluation checks: throws at
+  /// its first non-finite evaluation.
+  template <class State>
+  void replay(const State& x, double t, double h) const {
+    budget b;
+    Stepper st = fresh;
+    State y = x;
+    st.try_step(checked(*scene, b), y, t, h);
+  }
+};
+}  // namespace detail
 
 /// The state at t1 from x0 at t0; observer(x, t) sees the start and every
 /// step. Throws simulation_error (time, state, reason) or parameter_error.
@@ -49,9 +99,11 @@ typename S::state_type simulate(const S& scene, typename S::state_type x0, doubl
         detail::concat("flange: the state is not finite at t = ", t0, " (the initial state), ", detail::describe(x0)),
         t0);
   check_coordinates(scene, x0);
-  budget b{.max_rhs_evals = o.max_rhs_evals};
   auto stepper = odeint::make_controlled(o.tolerance, o.tolerance, odeint::runge_kutta_dopri5<typename S::state_type>());
-  integrate_projected(stepper, checked(scene, b), scene, x0, t0, t1, (t1 > t0 ? 1 : -1) * o.dt, observer);
+  long evals = 0;
+  const detail::checked_steps<S, decltype(stepper)> check{&scene, stepper};
+  detail::integrate_projected_with(stepper, detail::counted_system<S>{&scene, &evals, o.max_rhs_evals}, scene, x0, t0,
+                                   t1, (t1 > t0 ? 1 : -1) * o.dt, observer, check);
   return x0;
 }
 
