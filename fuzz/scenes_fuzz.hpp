@@ -130,12 +130,6 @@ typename S::state_type state_from(const S& s, bytes& b) {
   return x;
 }
 
-template <class S>
-bool finite(const S&, const typename S::state_type& x) {
-  for (double v : x)
-    if (!std::isfinite(v)) return false;
-  return true;
-}
 
 /// The derivative, recovery, the second algorithm and a checked run.
 template <class S>
@@ -149,7 +143,7 @@ void exercise(const S& s, bytes& b, bool tree) {
   } catch (const parameter_error&) {
     closed = false;
   }
-  if (!b.wild && finite(s, x) && closed) {
+  if (!b.wild && detail::finite(x) && closed) {
     X dx;
     bool singular = false;
     try {
@@ -158,7 +152,7 @@ void exercise(const S& s, bytes& b, bool tree) {
       singular = true;  // a singular mass matrix, named; tame shapes may have one at some q
     }
     if (!singular) {
-      if (!finite(s, dx)) finding("tame input, raw derivative not finite");
+      if (!detail::finite(dx)) finding("tame input, raw derivative not finite");
       const auto sol = recover(s, t, x);
       if (!std::isfinite(sol.energy())) finding("tame input, recovered energy not finite");
       const double r = scaled_residual(s, sol);
@@ -202,7 +196,7 @@ void exercise(const S& s, bytes& b, bool tree) {
   // The checked path: a finite state or a flange::error, whatever the input.
   try {
     const X x1 = simulate(s, x, 0.0, 0.05, {.tolerance = 1e-8, .max_rhs_evals = 1000});
-    if (!finite(s, x1)) finding("simulate returned a non-finite state");
+    if (!detail::finite(x1)) finding("simulate returned a non-finite state");
     const auto sol = recover(s, 0.05, x1);
     if (!b.wild && !std::isfinite(sol.energy())) finding("tame input, energy after simulate not finite");
   } catch (const error& e) {

@@ -23,6 +23,9 @@
 #include <flange/simulate/jacobian.hpp>
 #include <flange/simulate/odeint.hpp>
 #include <flange/simulate/projected.hpp>
+#include <flange/simulate/simulate.hpp>
+#include <flange/joints/free_motion.hpp>
+#include <flange/components/body.hpp>
 #include <flange/models/linkages.hpp>
 
 #include "random_params.hpp"
@@ -177,6 +180,26 @@ TEST_CASE("a loop scene's derivative and its projected stepping allocate nothing
           for (int i = 0; i < 100; ++i) fb(x, dx, 0.0);
           integrate_projected(dopri, fb, x, 0.01, 0.5, 1e-3);
           normalize(fb, x);
+        }) == 0);
+}
+
+TEST_CASE("flange::simulate allocates nothing: the crane (no projection), the four-bar and a free body (projected)") {
+  // The default path: its stepper, its per-step check and its replay copy
+  // live on the stack (std::array states).
+  const auto crane = models::gantry_crane({}, 0.7);
+  const auto fb = models::fourbar({});
+  const auto body = scene(World<"world">{}, FreeMotion<"fly">{}, Body<"b">({.m = 1, .J = Vec3d(0.1, 0.2, 0.3).asDiagonal()}),
+                          connect<"world.frame_b", "fly.frame_a">, connect<"fly.frame_b", "b.frame_a">);
+  decltype(fb)::state_type xf{0.3, 1.3, 2.4, 5.0, 0, 0};
+  close_loops<"crank_pivot">(fb, xf);
+  auto xb = neutral_state(body);
+  set_joint<"fly">(body, xb, {.R = orientation::cardan(0.2, 0.1, 0.3), .w = Vec3d(3, -2, 5)});
+  CHECK(count_allocations([&] {
+          const auto a = simulate(crane, {0.2, 0.4, 0.3, -0.5}, 0.0, 2.0);
+          const auto b = simulate(fb, xf, 0.0, 0.5);
+          const auto c = simulate(body, xb, 0.0, 1.0);
+          volatile double sink = a[0] + b[0] + c[0];
+          (void)sink;
         }) == 0);
 }
 

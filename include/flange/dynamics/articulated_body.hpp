@@ -213,8 +213,8 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
         // the force only its own generalized force, S⁻ᵀ·τ. The general
         // formula below reaches both only through cancellation (IA − U·D⁻¹·Uᵀ
         // and pA − U·D⁻¹·Sᵀ·pA), whose round-off is that of the heavy child
-        // and can swamp a light parent (tests/hard_tree_test.cpp: masses
-        // from 1e-6 to 1e6 made a parent's articulated inertia negative).
+        // and can swamp a light parent (tests/hard_mass_ratio_test.cpp:
+        // masses from 1e-6 to 1e6 made a parent's articulated inertia negative).
         if constexpr (has_generalized_force<typename LI::joint_type>) {
           Eigen::Matrix<T, nv, 1> tj;
           for (int k = 0; k < nv; ++k) tj(k) = tau[LI::v + k];

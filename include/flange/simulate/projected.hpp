@@ -10,8 +10,8 @@
 // stepper (dopri5) is reset so that its stored derivative is not reused for
 // the moved state. A scene with neither loops nor quaternions has nothing to
 // project (detail::needs_projection): its steps are those of
-// odeint::integrate_adaptive, first-same-as-last evaluations kept. Controlled steppers step adaptively, simple ones (rk4)
-// with the fixed dt. The system stepped may be the scene or a wrapper around
+// odeint::integrate_adaptive, first-same-as-last evaluations kept.
+// Controlled steppers step adaptively, simple ones (rk4) with the fixed dt. The system stepped may be the scene or a wrapper around
 // it (checked(scene, b)). The observer sees the state at t0 and after each
 // step, as with odeint::integrate_adaptive.
 #pragma once
