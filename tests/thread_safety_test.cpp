@@ -40,9 +40,9 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
-/// Everything a user computes from a scene at a state: the derivative, the
-/// articulated-body accelerations, recovered energy and cut forces, the
-/// residual, and a short checked simulation.
+/// Everything a user computes from a scene at a state: the derivative,
+/// recovered energy and cut forces, the residual, and a short checked
+/// simulation.
 template <class S>
 std::vector<double> work(const S& s, const std::vector<typename S::state_type>& states, double t1) {
   std::vector<double> out;
