@@ -29,7 +29,7 @@
 #include <limits>
 #include <numbers>
 
-#include <flange/dynamics/articulated_body.hpp>
+#include <flange/dynamics/other_algorithm.hpp>
 #include <flange/flange.hpp>
 #include <flange/dynamics/energy_mass_matrix.hpp>
 #include <flange/models/chain.hpp>
@@ -161,13 +161,13 @@ void exercise(const S& s, bytes& b, bool tree) {
         std::snprintf(m, sizeof m, "%g", r);
         finding("tame input, residual on recovered values", m);
       }
-      if (tree) {
+      if constexpr (!flange::detail::has_loops<S>) if (tree) {
         // The second algorithm. cond(M) (n_v²/4 recoveries) is computed only
         // when the two disagree beyond round-off, to judge whether they may.
         std::array<double, S::n_v> aba;
         double err = 0;
         try {
-          accelerations_articulated_body(s, t, x.data(), x.data() + S::n_q, aba.data());
+          accelerations_other(s, t, x.data(), x.data() + S::n_q, aba.data());
           double scale = 1;
           for (int i = 0; i < S::n_v; ++i) scale = std::max(scale, std::abs(dx[S::n_q + i]));
           for (int i = 0; i < S::n_v; ++i) err = std::max(err, std::abs(aba[i] - dx[S::n_q + i]) / scale);

@@ -3,7 +3,7 @@
 #pragma once
 #include <algorithm>
 
-#include <flange/dynamics/articulated_body.hpp>
+#include <flange/dynamics/other_algorithm.hpp>
 #include <flange/dynamics/recover.hpp>
 
 namespace flange::test {
@@ -21,7 +21,7 @@ struct consistency {
       orthogonality = std::max(orthogonality, (f.R * f.R.transpose() - Mat3d::Identity()).cwiseAbs().maxCoeff());
     residual = std::max(residual, scaled_residual(scene, sol));
     std::array<double, S::n_v> aba;
-    accelerations_articulated_body(scene, t, sol.q.data(), sol.v.data(), aba.data());
+    accelerations_other(scene, t, sol.q.data(), sol.v.data(), aba.data());
     for (int i = 0; i < S::n_v; ++i)
       algorithms = std::max(algorithms, std::abs(aba[i] - sol.vdot[i]) / (1 + std::abs(sol.vdot[i])));
     ++samples;

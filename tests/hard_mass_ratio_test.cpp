@@ -40,8 +40,8 @@ double mass_ratio_tree() {
     worst_cond = std::max(worst_cond, cond);
     typename S::state_type dx;
     s(x, dx, 0.2);
-    std::array<double, S::n_v> aba;
-    accelerations_articulated_body(s, 0.2, x.data(), x.data() + S::n_q, aba.data());
+    std::array<double, S::n_v> aba;  // the other algorithm
+    accelerations_other(s, 0.2, x.data(), x.data() + S::n_q, aba.data());
     double scale = 1, err = 0;
     for (int i = 0; i < S::n_v; ++i) scale = std::max(scale, std::abs(dx[S::n_q + i]));
     for (int i = 0; i < S::n_v; ++i) err = std::max(err, std::abs(aba[i] - dx[S::n_q + i]) / scale);
@@ -50,7 +50,7 @@ double mass_ratio_tree() {
     INFO("seed " << Seed << ", cond(M) " << cond << ": NE − ABA " << err << ", residual " << residual << ", power "
                  << std::abs(gap) / pscale);
     CHECK(err <= 1e-15 * cond * 10);
-    CHECK(residual <= 1e-12);
+    CHECK(residual <= std::max(1e-12, 1e-15 * cond * 10));
     CHECK(std::abs(gap) / pscale <= std::max(1e-10, 1e-15 * cond * 10));
   }
   return worst_cond;
@@ -63,8 +63,12 @@ TEST_CASE("trees with masses from 1e-6 to 1e6 kg keep their laws, to round-off t
   // in q̈, so Newton–Euler + mass matrix and the articulated-body algorithm
   // must agree to 1e-15·cond(M) (with a factor 10 for the sums), and so must
   // the power balance, whose dE/dt carries q̈'s error (its usual bound, 1e-10,
-  // where that is larger). The residual is evaluated on the recovered values
-  // themselves and keeps its bound (1e-12).
+  // where that is larger). So must the residual (its usual bound, 1e-12, where
+  // that is larger): on these trees of free and spherical joints the cost
+  // model picks the articulated body (dynamics/algorithm.hpp), whose q̈ is
+  // accurate to ε·cond(M) but does not make M·q̈ − (τ − b) small by
+  // construction, as LDLᵀ's backward-stable solve does; the residual
+  // evaluates exactly that (measured: up to 3e-8 at cond(M) 1e14).
   const double worst_cond = std::max({mass_ratio_tree<3>(), mass_ratio_tree<5>(), mass_ratio_tree<8>()});
   WARN("largest cond(M) over the mass-ratio trees: " << worst_cond);
   CHECK(worst_cond > 1e9);  // the case is as hard as it says

@@ -6,7 +6,7 @@
 // uninitialised read (and ctest fails on --error-exitcode).
 #include <cstdio>
 
-#include <flange/dynamics/articulated_body.hpp>
+#include <flange/dynamics/other_algorithm.hpp>
 #include <flange/simulate/odeint.hpp>
 
 #include "random_params.hpp"
@@ -33,7 +33,7 @@ int main() {
     s(x, dx, 0.1);
     for (double v : dx) check("the derivative", v);
     std::array<double, S::n_q> aba;
-    accelerations_articulated_body(s, 0.1, x.data(), x.data() + S::n_q, aba.data());
+    accelerations_other(s, 0.1, x.data(), x.data() + S::n_q, aba.data());
     for (double v : aba) check("the articulated-body accelerations", v);
     const auto sol = recover(s, 0.1, x);
     check("the recovered energy", sol.energy());

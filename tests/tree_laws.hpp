@@ -16,7 +16,7 @@
 #include <limits>
 #include <random>
 
-#include <flange/dynamics/articulated_body.hpp>
+#include <flange/dynamics/other_algorithm.hpp>
 #include <flange/dynamics/recover.hpp>
 #include <flange/math/dual.hpp>
 #include <flange/simulate/system.hpp>
@@ -110,7 +110,7 @@ void check_laws(const S& s, std::mt19937& rng, law_errors& e, int samples = 10) 
     s(x, dx, t);
     std::array<double, NV> aba;
     poison_stack();
-    accelerations_articulated_body(s, t, x.data(), x.data() + N, aba.data());
+    accelerations_other(s, t, x.data(), x.data() + N, aba.data());
     double scale = 1;
     for (int i = 0; i < NV; ++i) scale = std::max(scale, std::abs(dx[N + i]));
     for (int i = 0; i < NV; ++i) e.algorithms = std::max(e.algorithms, std::abs(aba[i] - dx[N + i]) / scale);

@@ -21,6 +21,7 @@
 #include "flange/equations/listing.hpp"
 #include "flange/dynamics/forward_dynamics.hpp"
 #include "flange/dynamics/articulated_body.hpp"
+#include "flange/dynamics/algorithm.hpp"
 #include "flange/dynamics/recover.hpp"
 #include "flange/simulate/system.hpp"
 #include "flange/simulate/odeint.hpp"

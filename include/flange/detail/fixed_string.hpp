@@ -37,17 +37,22 @@ constexpr fixed_string<A + B - 1> operator+(const fixed_string<A>& a, const char
   return a + fixed_string<B>(b);
 }
 
-/// A name with a number: indexed_name<"link", 3>() == "link3" (0 ≤ I < 100).
+/// The number of decimal digits of I ≥ 0.
+constexpr std::size_t decimal_digits(int i) {
+  std::size_t n = 1;
+  for (; i >= 10; i /= 10) ++n;
+  return n;
+}
+
+/// A name with a number: indexed_name<"link", 3>() == "link3" (I ≥ 0).
 template <fixed_string Prefix, int I>
 constexpr auto indexed_name() {
-  static_assert(I >= 0 && I < 100, "flange: indexed names go up to 99");
-  if constexpr (I < 10) {
-    const char digits[2] = {char('0' + I), 0};
-    return Prefix + fixed_string<2>(digits);
-  } else {
-    const char digits[3] = {char('0' + I / 10), char('0' + I % 10), 0};
-    return Prefix + fixed_string<3>(digits);
-  }
+  static_assert(I >= 0, "flange: indexed names take a number from 0 up");
+  constexpr std::size_t n = decimal_digits(I);
+  char digits[n + 1] = {};
+  int i = I;
+  for (std::size_t k = n; k-- > 0; i /= 10) digits[k] = char('0' + i % 10);
+  return Prefix + fixed_string<n + 1>(digits);
 }
 
 }  // namespace flange

@@ -22,6 +22,7 @@
 #include <tuple>
 
 #include "flange/dynamics/forward_dynamics.hpp"
+#include "flange/math/small_matrix.hpp"
 
 namespace flange {
 
@@ -47,7 +48,7 @@ using dmat = Eigen::Matrix<T, algebra_size<A>, algebra_size<A>>;
 
 /// A typed pair (motion or force) as a dense vector of the algebra, and back.
 template <class A, class T, class P0, class P1>
-dvec<A, T> to_dense(const P0& ang, const P1& lin) {
+FLANGE_INLINE dvec<A, T> to_dense(const P0& ang, const P1& lin) {
   constexpr auto dims = algebra_dims<A>();
   dvec<A, T> r;
   const Vec3<T> a = ang.dense(), l = lin.dense();
@@ -55,7 +56,7 @@ dvec<A, T> to_dense(const P0& ang, const P1& lin) {
   return r;
 }
 template <class A, class T>
-auto from_dense(const dvec<A, T>& x) {
+FLANGE_INLINE auto from_dense(const dvec<A, T>& x) {
   constexpr auto dims = algebra_dims<A>();
   Vec3<T> ang = Vec3<T>::Zero(), lin = Vec3<T>::Zero();
   for (int i = 0; i < algebra_size<A>; ++i) (dims[i].first ? ang : lin)(dims[i].second) = x(i);
@@ -65,38 +66,190 @@ auto from_dense(const dvec<A, T>& x) {
 /// The motion transform X of a link (parent coordinates → child): for a
 /// parent motion (α, a), (E·α, E·(a + α × p)); built column by column.
 template <class A, class T, class M>
-dmat<A, T> motion_transform(const M& m) {
+FLANGE_INLINE dmat<A, T> motion_transform(const M& m) {
   dmat<A, T> X;
   for (int i = 0; i < algebra_size<A>; ++i) {
     dvec<A, T> e = dvec<A, T>::Zero();
     e(i) = T(1);
     const auto b = from_dense<A, T>(e);
-    X.col(i) = to_dense<A, T>(rot(m.E(), b.ang), rot(m.E(), b.lin + cross(b.ang, m.p)));
+    const dvec<A, T> c = to_dense<A, T>(rot(m.E(), b.ang), rot(m.E(), b.lin + cross(b.ang, m.p)));
+    for (int k = 0; k < algebra_size<A>; ++k) X(k, i) = c(k);
   }
   return X;
 }
 /// A rigid inertia (m, h, I) as a dense matrix of the algebra: (α, a) ↦ (I·α + h × a, m·a + α × h).
 template <class A, class T, class R>
-dmat<A, T> inertia_matrix(const R& c) {
+FLANGE_INLINE dmat<A, T> inertia_matrix(const R& c) {
   dmat<A, T> I;
   for (int i = 0; i < algebra_size<A>; ++i) {
     dvec<A, T> e = dvec<A, T>::Zero();
     e(i) = T(1);
     const auto b = from_dense<A, T>(e);
     const auto F = inertia_times(c, motion_pair{b.ang, b.lin});
-    I.col(i) = to_dense<A, T>(F.n, F.f);
+    const dvec<A, T> col = to_dense<A, T>(F.n, F.f);
+    for (int k = 0; k < algebra_size<A>; ++k) I(k, i) = col(k);
   }
   return I;
 }
 
+/// Eᵀ·X·E for any 3 × 3 X, with E as its type allows (math/small_matrix.hpp:
+/// no call to Eigen's product kernels inside the unrolled derivative).
+template <class T, class E>
+FLANGE_INLINE Mat3<T> rotated_back(const E& R, const Mat3<T>& X) {
+  if constexpr (is_identity_rotation<E>) {
+    return X;
+  } else if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) {
+    return small::mul(small::mul_tn(R, X), R);
+  } else {
+    Mat3<T> A, B;  // A = Eᵀ·X column by column, then B = (A·E)ᵀ = Eᵀ·Aᵀ column by column
+    for3([&](auto k) FLANGE_INLINE_LAMBDA {
+      constexpr int K = decltype(k)::value;
+      const auto c = rot_t(R, to_svec(Vec3<T>(X(0, K), X(1, K), X(2, K))));
+      for3([&](auto i) FLANGE_INLINE_LAMBDA { A(decltype(i)::value, K) = c.template get<decltype(i)::value>(); });
+    });
+    for3([&](auto k) FLANGE_INLINE_LAMBDA {
+      constexpr int K = decltype(k)::value;
+      const auto c = rot_t(R, to_svec(Vec3<T>(A(K, 0), A(K, 1), A(K, 2))));
+      for3([&](auto i) FLANGE_INLINE_LAMBDA { B(K, decltype(i)::value) = c.template get<decltype(i)::value>(); });
+    });
+    return B;
+  }
+}
+
+/// fit<M>(v): v as an svec of mask M. Components of M that v does not hold
+/// are constant zeros; components of v outside M are dropped (the caller
+/// knows they are zero, or, in a plane, that they never reach q̈).
+template <int M, class T, int N>
+FLANGE_INLINE svec<T, M> fit(const svec<T, N>& v) {
+  svec<T, M> r;
+  for3([&](auto i) FLANGE_INLINE_LAMBDA {
+    constexpr int I = decltype(i)::value;
+    if constexpr (bit(M, I)) r.template at<I>() = v.template get<I>();
+  });
+  return r;
+}
+
+/// Motions and forces with the algebra's components (all six in space;
+/// ω_K and the plane's two directions in a plane), in link coordinates.
+template <class A, class T>
+using aba_motion = motion_pair<svec<T, A::angular_mask>, svec<T, A::linear_mask>>;
+template <class A, class T>
+using aba_force = force_pair<svec<T, A::angular_mask>, svec<T, A::linear_mask>>;
+template <class A, class T, class Ang, class Lin>
+FLANGE_INLINE aba_motion<A, T> as_motion(const Ang& ang, const Lin& lin) {
+  return {fit<A::angular_mask>(ang), fit<A::linear_mask>(lin)};
+}
+template <class A, class T, class N, class F>
+FLANGE_INLINE aba_force<A, T> as_force(const N& n, const F& f) {
+  return {fit<A::angular_mask>(n), fit<A::linear_mask>(f)};
+}
+
+/// The cross-product matrix: skew(p)·x = p × x.
+template <class T>
+FLANGE_INLINE Mat3<T> skew(const Vec3<T>& p) {
+  Mat3<T> P;
+  P(0, 0) = T(0), P(0, 1) = -p(2), P(0, 2) = p(1);
+  P(1, 0) = p(2), P(1, 1) = T(0), P(1, 2) = -p(0);
+  P(2, 0) = -p(1), P(2, 1) = p(0), P(2, 2) = T(0);
+  return P;
+}
+
+/// An articulated-body inertia: the symmetric map from a link's acceleration
+/// (α, a) to the force (n, f) its subtree resists with. In space it is kept
+/// as three 3 × 3 blocks, n = Θ·α + H·a, f = Hᵀ·α + M·a, and carried to the
+/// parent block by block: a rotation (Eᵀ·X·E for each block, applied as the
+/// link's rotation type allows) and then the shift by the child's offset p,
+///
+///   H' = H + p̂·M,  Θ' = Θ + p̂·Hᵀ − H'·p̂,  M' = M.
+///
+/// In a plane it is a dense 3 × 3 matrix over (α_K, a_i, a_j), carried by the
+/// link's 3 × 3 motion transform.
+template <class A, class T>
+struct articulated_inertia;
+
+template <class T>
+struct articulated_inertia<spatial_algebra, T> {
+  using A = spatial_algebra;
+  Mat3<T> Th, H, M;
+
+  template <class R>
+  FLANGE_INLINE static articulated_inertia rigid(const R& r) {
+    articulated_inertia a{to_matrix<T>(r.I_o), skew<T>(r.h.dense()), {}};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) a.M(i, j) = i == j ? r.m : T(0);
+    return a;
+  }
+  template <class Ang, class Lin>
+  FLANGE_INLINE aba_force<A, T> times(const Ang& al, const Lin& a) const {
+    return as_force<A, T>(Th * al + H * a, rot_t(H, al) + M * a);
+  }
+  /// The yardstick of a pivot: the trace of the blocks a column moves in.
+  FLANGE_INLINE T scale(bool ang, bool lin) const { return (ang ? Th.trace() : T(0)) + (lin ? M.trace() : T(0)); }
+  /// −= Σ U_i·W_iᵀ, for force columns U and W (W = U·D⁻¹ in practice).
+  template <std::size_t N>
+  FLANGE_INLINE void subtract(const std::array<aba_force<A, T>, N>& U, const std::array<aba_force<A, T>, N>& W) {
+    for (std::size_t k = 0; k < N; ++k) {
+      const Vec3<T> un = U[k].n.dense(), uf = U[k].f.dense(), wn = W[k].n.dense(), wf = W[k].f.dense();
+      small::sub_outer(Th, un, wn);
+      small::sub_outer(H, un, wf);
+      small::sub_outer(M, uf, wf);
+    }
+  }
+  template <class Mo>
+  FLANGE_INLINE void add_from_child(const articulated_inertia& c, const Mo& m) {
+    const Mat3<T> Hr = rotated_back<T>(m.E(), c.H), Mr = rotated_back<T>(m.E(), c.M);
+    small::add_to(Th, rotated_back<T>(m.E(), c.Th));
+    small::add_to(M, Mr);
+    if constexpr (is_zero_vec<decltype(m.p)>) {
+      small::add_to(H, Hr);
+    } else {
+      const Mat3<T> P = skew<T>(m.p.dense());
+      Mat3<T> Hs = Hr;
+      small::add_to(Hs, small::mul(P, Mr));
+      small::add_to(Th, small::mul_nt(P, Hr));
+      small::sub_from(Th, small::mul(Hs, P));
+      small::add_to(H, Hs);
+    }
+  }
+};
+
+template <int K, class T>
+struct articulated_inertia<planar_algebra<K>, T> {
+  using A = planar_algebra<K>;
+  dmat<A, T> I;
+
+  template <class R>
+  FLANGE_INLINE static articulated_inertia rigid(const R& r) {
+    return {inertia_matrix<A, T>(r)};
+  }
+  template <class Ang, class Lin>
+  FLANGE_INLINE aba_force<A, T> times(const Ang& al, const Lin& a) const {
+    const auto x = from_dense<A, T>(small::mul(I, to_dense<A, T>(al, a)));
+    return {x.ang, x.lin};
+  }
+  FLANGE_INLINE T scale(bool ang, bool lin) const {
+    return (ang ? I(0, 0) : T(0)) + (lin ? I(1, 1) + I(2, 2) : T(0));
+  }
+  template <std::size_t N>
+  FLANGE_INLINE void subtract(const std::array<aba_force<A, T>, N>& U, const std::array<aba_force<A, T>, N>& W) {
+    for (std::size_t k = 0; k < N; ++k) small::sub_outer(I, to_dense<A, T>(U[k].n, U[k].f), to_dense<A, T>(W[k].n, W[k].f));
+  }
+  template <class Mo>
+  FLANGE_INLINE void add_from_child(const articulated_inertia& c, const Mo& m) {
+    const dmat<A, T> X = motion_transform<A, T>(m);
+    small::add_to(I, small::mul_tn(X, small::mul(c.I, X)));
+  }
+};
+
 template <class A, class T, int NV>
 struct aba_link {
-  dmat<A, T> X, IA;
-  dvec<A, T> c, pA, a;
-  Eigen::Matrix<T, algebra_size<A>, NV> S, U;
+  svec<T, A::angular_mask> w;  ///< ω
+  articulated_inertia<A, T> IA;
+  aba_force<A, T> pA;
+  aba_motion<A, T> c, a;
+  std::array<aba_force<A, T>, NV> U, UDinv;  ///< U = I_A·S and U·D⁻¹, by column
   Eigen::Matrix<T, NV, NV> Dinv;
-  Eigen::Matrix<T, NV, 1> u;
-  std::array<T, NV> scale;
+  std::array<T, NV> u;
 };
 
 template <class A, class S, class T, class Seq = std::make_integer_sequence<int, S::tree.n_links - 1>>
@@ -106,43 +259,35 @@ struct aba_workspace<A, S, T, std::integer_sequence<int, L...>> {
   using type = std::tuple<aba_link<A, T, link_info<S, L + 1>::nv>...>;
 };
 
-/// The velocity-kinematics pass: ω of each link, its velocity-product
-/// acceleration c and its bias force p_A.
-template <class A, class S, class T, class Motions, class WS>
-struct aba_velocity_pass {
-  const S& scene;
-  const Motions& motions;
-  const T* v;
-  const link_loads<S, T>& n_ext;
-  const link_loads<S, T>& f_ext;
-  WS& ws;
-
-  template <int L, class K>
-  nothing at(const K& k) {
-    if constexpr (L != 0) {
-      auto& w = std::get<L - 1>(ws);
-      w.c = to_dense<A, T>(k.wd, k.a);
-      const auto rest = link_kinematics{k.w, zero_vec<T>{}, zero_vec<T>{}};
-      const auto pA = own_wrench<A, T, L>(scene, rest, n_ext, f_ext);
-      w.pA = to_dense<A, T>(pA.n, pA.f);
-    }
-    return {};
+/// D⁻¹ for D = Sᵀ·I_A·S, with the relative pivot test of ldlt.hpp against the
+/// trace of the articulated inertia's blocks each column moves in.
+template <class S, int L, class A, class T, class Mo, int NV>
+FLANGE_INLINE void aba_invert_d(aba_link<A, T, NV>& w, const Mo& m, const T& t, const T* q, const T* v) {
+  Eigen::Matrix<T, NV, NV> D;
+  std::array<T, NV> scale;
+  [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
+    (
+        [&]() FLANGE_INLINE_LAMBDA {
+          const auto s = m.template col<K>();
+          const auto g = m.project(w.U[K].n, w.U[K].f);
+          for (int i = 0; i < NV; ++i) D(i, K) = g[i];
+          scale[K] = w.IA.scale(!is_zero_vec<decltype(s.ang)>, !is_zero_vec<decltype(s.lin)>);
+        }(),
+        ...);
+  }(std::make_integer_sequence<int, NV>{});
+  ldlt_pivots<NV, T> f;
+  // A failing pivot is a singular mass matrix at this joint's rates (D is
+  // the joint's share of it once its subtree is accounted for): reported as
+  // the mass-matrix path reports it, a non-finite state included.
+  if (const auto p = ldlt_factor<NV>(D, f, scale.data()); p.index >= 0) [[unlikely]]
+    singular_mass_matrix<S>(pivot_report<T>{link_info<S, L>::v + p.index, p.d, p.scale}, t, q, v);
+  for (int k = 0; k < NV; ++k) {
+    std::array<T, NV> e{}, col{};
+    e[k] = T(1);
+    ldlt_solve<NV>(D, f, e.data(), col.data());
+    for (int i = 0; i < NV; ++i) w.Dinv(i, k) = col[i];
   }
-  template <int L, int C, class K>
-  auto down(const K& k) {
-    // The child's velocity products: forward_step from the parent's ω alone.
-    const auto moving = link_kinematics{k.w, zero_vec<T>{}, zero_vec<T>{}};
-    return forward_step<T>(moving, std::get<C - 1>(motions), v + link_info<S, C>::v, no_rates{});
-  }
-  template <int, int>
-  nothing gather(nothing, nothing) {
-    return {};
-  }
-  template <int, class D>
-  nothing leave(const D&, nothing) {
-    return {};
-  }
-};
+}
 
 }  // namespace detail
 
@@ -150,100 +295,130 @@ struct aba_velocity_pass {
 template <class A, class S, class T>
 void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, const T* v, T* vdot) {
   using namespace detail;
-  constexpr int NL = S::tree.n_links;
   const auto xs = state_view<S>(q, v);
   typename aba_workspace<A, S, T>::type ws;
   const auto motions = algebra_motions<A>(scene, q);
-  {
-    link_loads<S, T> n_ext, f_ext;
-    gather_external<A>(scene, t, xs, motions, pose_motions<A>(scene, q, motions), n_ext, f_ext);
-    std::array<T, S::n_v> tau;
-    joint_forces(scene, t, xs, tau.data());
-    for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
-      constexpr int L = decltype(l)::value;
-      using LI = link_info<S, L>;
-      auto& w = std::get<L - 1>(ws);
-      const auto& m = std::get<L - 1>(motions);
-      w.X = motion_transform<A, T>(m);
-      [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
-        ((w.S.col(K) = to_dense<A, T>(m.template col<K>().ang, m.template col<K>().lin)), ...);
-      }(std::make_integer_sequence<int, LI::nv>{});
-      w.IA = inertia_matrix<A, T>(link_inertia<A, T, L>(scene));
-    });
-    aba_velocity_pass<A, S, T, std::remove_cvref_t<decltype(motions)>, decltype(ws)> vel{scene, motions, v, n_ext, f_ext,
-                                                                                          ws};
-    walk<S, 0>(vel, link_kinematics{zero_vec<T>{}, zero_vec<T>{}, zero_vec<T>{}});
-    for_links_reverse<S>([&](auto l) FLANGE_INLINE_LAMBDA {
-      constexpr int L = decltype(l)::value;
-      using LI = link_info<S, L>;
-      constexpr int nv = LI::nv;
-      auto& w = std::get<L - 1>(ws);
-      w.U = w.IA * w.S;
-      Eigen::Matrix<T, nv, nv> D = w.S.transpose() * w.U;
-      // The relative pivot test of ldlt.hpp, against the trace of the
-      // articulated inertia's block each column moves in.
-      constexpr auto dims = algebra_dims<A>();
-      for (int k = 0; k < nv; ++k) {
-        T s = T(0);
-        bool ang = false, lin = false;
-        for (int i = 0; i < algebra_size<A>; ++i)
-          if (w.S(i, k) != T(0)) (dims[i].first ? ang : lin) = true;
-        for (int i = 0; i < algebra_size<A>; ++i)
-          if ((dims[i].first && ang) || (!dims[i].first && lin)) s += w.IA(i, i);
-        w.scale[k] = s;
+  link_loads<S, T> n_ext, f_ext;
+  gather_external<A>(scene, t, xs, motions, pose_motions<A>(scene, q, motions), n_ext, f_ext);
+  std::array<T, S::n_v> tau;
+  if constexpr (has_joint_forces<S>()) joint_forces(scene, t, xs, tau.data());
+  // Down the tree, parents first: each link's ω, its velocity-product
+  // acceleration c (forward_step from the parent's ω alone), its bias force
+  // p_A and its own inertia as the start of I_A.
+  for_links_split<S>([&](auto l) FLANGE_INLINE_LAMBDA {
+    constexpr int L = decltype(l)::value;
+    using LI = link_info<S, L>;
+    auto& w = std::get<L - 1>(ws);
+    const auto k = [&]() FLANGE_INLINE_LAMBDA {
+      if constexpr (LI::parent != 0) {
+        const auto moving = link_kinematics{std::get<LI::parent - 1>(ws).w, zero_vec<T>{}, zero_vec<T>{}};
+        return forward_step<T>(moving, std::get<L - 1>(motions), v + LI::v, no_rates{});
+      } else {
+        const auto rest = link_kinematics{zero_vec<T>{}, zero_vec<T>{}, zero_vec<T>{}};
+        return forward_step<T>(rest, std::get<L - 1>(motions), v + LI::v, no_rates{});
       }
-      Eigen::Matrix<T, nv, nv> Dinv;
-      for (int k = 0; k < nv; ++k) {
-        Eigen::Matrix<T, nv, nv> Dk = D;
-        std::array<T, nv> e{}, col{};
-        e[k] = T(1);
-        if (const auto p = solve_spd<nv>(Dk, e.data(), col.data(), w.scale.data()); p.index >= 0) [[unlikely]]
-          throw simulation_error(concat("flange: singular articulated inertia at joint \"", S::table.names[LI::joint],
-                                        "\" at t = ", static_cast<double>(t), ", ", describe_state(q, S::n_q, v, S::n_v),
-                                        ": pivot ", static_cast<double>(p.d), " against ", static_cast<double>(p.scale)),
-                                 static_cast<double>(t));
-        for (int i = 0; i < nv; ++i) Dinv(i, k) = col[i];
-      }
-      w.Dinv = Dinv;
-      for (int k = 0; k < nv; ++k) w.u(k) = tau[LI::v + k];
-      w.u -= w.S.transpose() * w.pA;
-      if constexpr (LI::parent != 0 && nv == algebra_size<A>) {
-        // A joint that frees every direction (FreeMotion; a Planar joint in
-        // planar algebra) passes its parent no articulated inertia, and of
-        // the force only its own generalized force, S⁻ᵀ·τ. The general
-        // formula below reaches both only through cancellation (IA − U·D⁻¹·Uᵀ
-        // and pA − U·D⁻¹·Sᵀ·pA), whose round-off is that of the heavy child
-        // and can swamp a light parent (tests/hard_mass_ratio_test.cpp:
-        // masses from 1e-6 to 1e6 made a parent's articulated inertia negative).
-        if constexpr (has_generalized_force<typename LI::joint_type>) {
-          Eigen::Matrix<T, nv, 1> tj;
-          for (int k = 0; k < nv; ++k) tj(k) = tau[LI::v + k];
-          const dvec<A, T> pa = w.S.transpose().partialPivLu().solve(tj);
-          std::get<LI::parent - 1>(ws).pA += w.X.transpose() * pa;
-        }
-      } else if constexpr (LI::parent != 0) {
+    }();
+    w.w = fit<A::angular_mask>(k.w);
+    w.c = as_motion<A, T>(k.wd, k.a);
+    const auto pA = own_wrench<A, T, L>(scene, link_kinematics{k.w, zero_vec<T>{}, zero_vec<T>{}}, n_ext, f_ext);
+    w.pA = as_force<A, T>(pA.n, pA.f);
+    w.IA = articulated_inertia<A, T>::rigid(link_inertia<A, T, L>(scene));
+  });
+  // Up the tree, children first.
+  for_links_split<S, true>([&](auto l) FLANGE_INLINE_LAMBDA {
+    constexpr int L = decltype(l)::value;
+    using LI = link_info<S, L>;
+    constexpr int nv = LI::nv;
+    auto& w = std::get<L - 1>(ws);
+    const auto& m = std::get<L - 1>(motions);
+    [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
+      ((w.U[K] = w.IA.times(m.template col<K>().ang, m.template col<K>().lin)), ...);
+    }(std::make_integer_sequence<int, nv>{});
+    aba_invert_d<S, L>(w, m, t, q, v);
+    const auto sp = m.project(w.pA.n, w.pA.f);
+    for (int k = 0; k < nv; ++k) {
+      if constexpr (has_joint_forces<S>()) w.u[k] = tau[LI::v + k] - sp[k];
+      else w.u[k] = -sp[k];
+    }
+    if constexpr (LI::parent != 0 && nv == algebra_size<A>) {
+      // A joint that frees every direction (FreeMotion; a Planar joint in
+      // planar algebra) passes its parent no articulated inertia, and of
+      // the force only its own generalized force, S⁻ᵀ·τ. The general
+      // formula below reaches both only through cancellation (IA − U·D⁻¹·Uᵀ
+      // and pA − U·D⁻¹·Sᵀ·pA), whose round-off is that of the heavy child
+      // and can swamp a light parent (tests/hard_mass_ratio_test.cpp:
+      // masses from 1e-6 to 1e6 made a parent's articulated inertia negative).
+      if constexpr (has_generalized_force<typename LI::joint_type>) {
+        Eigen::Matrix<T, nv, nv> St;
+        [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
+          ((St.row(K) = to_dense<A, T>(m.template col<K>().ang, m.template col<K>().lin).transpose()), ...);
+        }(std::make_integer_sequence<int, nv>{});
+        Eigen::Matrix<T, nv, 1> tj;
+        for (int k = 0; k < nv; ++k) tj(k) = tau[LI::v + k];
+        const auto pa = from_dense<A, T>(dvec<A, T>(St.partialPivLu().solve(tj)));
         auto& p = std::get<LI::parent - 1>(ws);
-        const dmat<A, T> Ia = w.IA - w.U * w.Dinv * w.U.transpose();
-        const dvec<A, T> pa = w.pA + Ia * w.c + w.U * (w.Dinv * w.u);
-        p.IA += w.X.transpose() * Ia * w.X;
-        p.pA += w.X.transpose() * pa;
+        const auto up = carry_up(m, force_pair{pa.ang, pa.lin});
+        p.pA = as_force<A, T>(p.pA.n + up.n, p.pA.f + up.f);
       }
-    });
-    const auto base = base_kinematics<A, T>(scene);
-    const dvec<A, T> a0 = to_dense<A, T>(base.wd, base.a);
-    for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
-      constexpr int L = decltype(l)::value;
-      using LI = link_info<S, L>;
-      auto& w = std::get<L - 1>(ws);
-      const dvec<A, T>* aP = &a0;
-      if constexpr (LI::parent != 0) aP = &std::get<LI::parent - 1>(ws).a;
-      const dvec<A, T> ap = w.X * *aP + w.c;
-      const Eigen::Matrix<T, LI::nv, 1> acc = w.Dinv * (w.u - w.U.transpose() * ap);
-      for (int k = 0; k < LI::nv; ++k) vdot[LI::v + k] = acc(k);
-      w.a = ap + w.S * acc;
-    });
-    (void)NL;
-  }
+    } else if constexpr (LI::parent != 0) {
+      for (int k = 0; k < nv; ++k) {
+        auto n = w.Dinv(0, k) * w.U[0].n;
+        auto f = w.Dinv(0, k) * w.U[0].f;
+        for (int i = 1; i < nv; ++i) {
+          n = n + w.Dinv(i, k) * w.U[i].n;
+          f = f + w.Dinv(i, k) * w.U[i].f;
+        }
+        w.UDinv[k] = {n, f};
+      }
+      // I_a = I_A − U·D⁻¹·Uᵀ; p_a = p_A + I_a·c + U·D⁻¹·u
+      w.IA.subtract(w.UDinv, w.U);
+      const auto Iac = w.IA.times(w.c.ang, w.c.lin);
+      auto pn = w.pA.n + Iac.n;
+      auto pf = w.pA.f + Iac.f;
+      for (int k = 0; k < nv; ++k) {
+        pn = pn + w.u[k] * w.UDinv[k].n;
+        pf = pf + w.u[k] * w.UDinv[k].f;
+      }
+      auto& p = std::get<LI::parent - 1>(ws);
+      p.IA.add_from_child(w.IA, m);
+      const auto up = carry_up(m, force_pair{pn, pf});
+      p.pA = as_force<A, T>(p.pA.n + up.n, p.pA.f + up.f);
+    }
+  });
+  // Down the tree, parents first: a' = X·a_P + c, v̇ = D⁻¹·(u − Uᵀ·a'), a = a' + S·v̇.
+  const auto base = base_kinematics<A, T>(scene);
+  for_links_split<S>([&](auto l) FLANGE_INLINE_LAMBDA {
+    constexpr int L = decltype(l)::value;
+    using LI = link_info<S, L>;
+    constexpr int nv = LI::nv;
+    auto& w = std::get<L - 1>(ws);
+    const auto& m = std::get<L - 1>(motions);
+    const auto ap = [&](const auto& aP) FLANGE_INLINE_LAMBDA {
+      return as_motion<A, T>(rot(m.E(), aP.ang) + w.c.ang, rot(m.E(), aP.lin + cross(aP.ang, m.p)) + w.c.lin);
+    }([&]() FLANGE_INLINE_LAMBDA {
+      if constexpr (LI::parent != 0) return std::get<LI::parent - 1>(ws).a;
+      else return motion_pair{base.wd, base.a};
+    }());
+    std::array<T, nv> r;
+    for (int k = 0; k < nv; ++k)
+      r[k] = w.u[k] - (value_of<T>(dot(w.U[k].n, ap.ang)) + value_of<T>(dot(w.U[k].f, ap.lin)));
+    std::array<T, nv> acc;
+    for (int i = 0; i < nv; ++i) {
+      acc[i] = w.Dinv(i, 0) * r[0];
+      for (int k = 1; k < nv; ++k) acc[i] += w.Dinv(i, k) * r[k];
+      vdot[LI::v + i] = acc[i];
+    }
+    if constexpr (children<S, L>().size() > 0) {
+      auto an = ap.ang;
+      auto al = ap.lin;
+      [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
+        ((an = fit<A::angular_mask>(an + acc[K] * m.template col<K>().ang),
+          al = fit<A::linear_mask>(al + acc[K] * m.template col<K>().lin)),
+         ...);
+      }(std::make_integer_sequence<int, nv>{});
+      w.a = {an, al};
+    }
+  });
 }
 
 /// v̇ at (t, q, v) by the articulated-body algorithm, in the algebra the scene calls for.

@@ -150,9 +150,11 @@ void accelerations_and_constraint_forces(const S& scene, const T& t, const T* q,
   detail::solve_accelerations<A>(scene, t, q, v, vdot, motions, detail::pose_motions<A>(scene, q, motions), lambda);
 }
 
-/// v̇ at (t, q, v) by the algorithm the scene's type calls for.
+/// v̇ at (t, q, v) by Newton–Euler, the mass matrix and LDLᵀ, in the
+/// algebra the scene's type calls for. accelerations() (algorithm.hpp) picks
+/// this or the articulated-body algorithm.
 template <class S, class T>
-void accelerations(const S& scene, const T& t, const T* q, const T* v, T* vdot) {
+void accelerations_mass_matrix(const S& scene, const T& t, const T* q, const T* v, T* vdot) {
   accelerations_in<algebra_t<S>>(scene, t, q, v, vdot);
 }
 /// The same in spatial arithmetic, whatever the scene.

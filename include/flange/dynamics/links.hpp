@@ -70,6 +70,32 @@ FLANGE_INLINE void for_links_reverse(F&& f) {
     (f(std::integral_constant<int, S::tree.n_links - 1 - L>{}), ...);
   }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
 }
+/// Scenes with more links than this compile the articulated-body algorithm's
+/// per-link steps as functions of their own (for_links_split): one function
+/// of a hundred unrolled links takes the optimiser superlinear time and
+/// gigabytes, while a call per link costs a few nanoseconds against the
+/// hundred or so its step takes. Smaller scenes stay one straight-line block.
+inline constexpr int split_links_above = 16;
+
+template <int L, class F>
+[[gnu::noinline]] void link_step(F& f) {
+  f(std::integral_constant<int, L>{});
+}
+/// for_links (Reverse: for_links_reverse), each link's step its own function
+/// when the scene has more than split_links_above links.
+template <class S, bool Reverse = false, class F>
+FLANGE_INLINE void for_links_split(F&& f) {
+  if constexpr (S::tree.n_links - 1 <= split_links_above) {
+    if constexpr (Reverse) for_links_reverse<S>(f);
+    else for_links<S>(f);
+  } else {
+    [&]<int... L>(std::integer_sequence<int, L...>) FLANGE_INLINE_LAMBDA {
+      if constexpr (Reverse) (link_step<S::tree.n_links - 1 - L>(f), ...);
+      else (link_step<L + 1>(f), ...);
+    }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+  }
+}
+
 /// f(integral_constant<C>) for each child C of link L.
 template <class S, int L, class F>
 FLANGE_INLINE void for_children(F&& f) {

@@ -20,7 +20,7 @@
 #include <string_view>
 
 #include "flange/core/frame_kinematics.hpp"
-#include "flange/dynamics/forward_dynamics.hpp"
+#include "flange/dynamics/algorithm.hpp"
 #include "flange/dynamics/kinematics.hpp"
 #include "flange/equations/residual.hpp"
 #include "flange/scene/joint_check.hpp"

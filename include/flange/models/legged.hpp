@@ -37,11 +37,11 @@ using leg_axis = std::conditional_t<J == 0, axis::y, axis::x>;
 template <int K, int J, int Links>
 auto leg_link(const legged_params& p) {
   namespace hana = boost::hana;
-  constexpr auto j = indexed_name<"j", 10 * K + J>(), r = indexed_name<"r", 10 * K + J>(),
-                 b = indexed_name<"b", 10 * K + J>();
+  constexpr auto j = indexed_name<"j", 100 * K + J>(), r = indexed_name<"r", 100 * K + J>(),
+                 b = indexed_name<"b", 100 * K + J>();
   constexpr auto parent = [] {
     if constexpr (J == 0) return indexed_name<"h", K>() + ".frame_b";
-    else return indexed_name<"r", 10 * K + J - 1>() + ".frame_b";
+    else return indexed_name<"r", 100 * K + J - 1>() + ".frame_b";
   }();
   return hana::make_tuple(Revolute<j, leg_axis<J>>{}, FixedTranslation<r>({.d = {0, -p.link_length, 0}}),
                           Body<b, cm::offset>({.m = p.link_mass, .J = p.link_inertia.asDiagonal(),
@@ -67,7 +67,7 @@ auto leg(const legged_params& p) {
 template <int Legs = 4, int Links = 3>
 auto legged(const legged_params& p = {}) {
   namespace hana = boost::hana;
-  static_assert(Legs >= 1 && Legs <= 9 && Links >= 1 && Links <= 9);
+  static_assert(Legs >= 1 && Legs <= 9 && Links >= 1 && Links <= 99);
   auto base = hana::make_tuple(World<"world">{}, FreeMotion<"base">{},
                                Body<"trunk">({.m = p.trunk_mass, .J = p.trunk_inertia.asDiagonal()}),
                                connect<"world.frame_b", "base.frame_a">, connect<"base.frame_b", "trunk.frame_a">);

@@ -4,6 +4,7 @@
 // counts, and the kinematic tree the dynamics walk.
 #pragma once
 #include <array>
+#include <cstdint>
 #include <string_view>
 
 #include "flange/core/component.hpp"
@@ -57,27 +58,49 @@ constexpr int find_root(std::array<int, M>& p, int i) {
   return i;
 }
 
+/// FNV-1a of a name: the scene analysis compares these before the names, so
+/// that a scene of hundreds of components stays within the compiler's
+/// constexpr budget (each string comparison costs it dozens of steps).
+constexpr std::uint32_t name_hash(std::string_view s) {
+  std::uint32_t h = 2166136261u;
+  for (const char c : s) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
+  return h;
+}
 template <int NC, int NF, int NK>
-constexpr int find_frame(const scene_table<NC, NF, NK>& t, std::string_view s) {
+constexpr auto name_hashes(const scene_table<NC, NF, NK>& t) {
+  std::array<std::uint32_t, NC> h{};
+  for (int c = 0; c < NC; ++c) h[c] = name_hash(t.names[c]);
+  return h;
+}
+
+/// The frame "component.frame" names, or −1; hashes from name_hashes(t).
+template <int NC, int NF, int NK, class Hashes>
+constexpr int find_frame(const scene_table<NC, NF, NK>& t, std::string_view s, const Hashes& hashes) {
   // A loop, not find/substr: with g++'s -fsanitize=undefined those carry
   // null-pointer checks that are not constant expressions.
   std::size_t dot = 0;
   while (dot < s.size() && s[dot] != '.') ++dot;
   if (dot == s.size()) return -1;
   const std::string_view comp(s.data(), dot), frame(s.data() + dot + 1, s.size() - dot - 1);
+  const std::uint32_t h = name_hash(comp);
   for (int c = 0; c < NC; ++c)
-    if (t.names[c] == comp)
+    if (hashes[c] == h && t.names[c] == comp)
       for (int k = 0; k < t.nframes[c]; ++k)
         if (t.frame_names[c][k] == frame) return t.frame_base[c] + k;
   return -1;
+}
+template <int NC, int NF, int NK>
+constexpr int find_frame(const scene_table<NC, NF, NK>& t, std::string_view s) {
+  return find_frame(t, s, name_hashes(t));
 }
 
 template <int NC, int NF, int NK>
 constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
   topology<NC, NF, NK> r{};
+  const auto hashes = name_hashes(t);
   for (int c = 0; c < NC; ++c) {
-    for (int d = 0; d < c; ++d)
-      if (t.names[c] == t.names[d] && r.duplicate_name < 0) r.duplicate_name = c;
+    for (int d = 0; d < c && r.duplicate_name < 0; ++d)
+      if (hashes[c] == hashes[d] && t.names[c] == t.names[d]) r.duplicate_name = c;
     if (t.kinds[c] == role::world) {
       if (++r.n_worlds == 1) r.world = c;
       else if (r.second_world < 0) r.second_world = c;
@@ -86,7 +109,7 @@ constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
   std::array<int, NF> parent{};
   for (int f = 0; f < NF; ++f) parent[f] = f;
   for (int k = 0; k < NK; ++k) {
-    const int a = find_frame(t, t.conn_a[k]), b = find_frame(t, t.conn_b[k]);
+    const int a = find_frame(t, t.conn_a[k], hashes), b = find_frame(t, t.conn_b[k], hashes);
     r.conn_frame_a[k] = a;
     r.conn_frame_b[k] = b;
     if (a < 0 || b < 0) {
@@ -132,21 +155,19 @@ constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
   }
   // Reachability from the World: sets joined by connections, and all frames
   // of one component joined through the component.
+  // One union–find over the sets, joined through each component's frames:
+  // linear in the scene, where a sweep until nothing grows was quadratic.
   if (r.world >= 0) {
-    std::array<bool, NF> reached{};
-    reached[r.set_of[t.frame_base[r.world]]] = true;
-    for (bool grew = true; grew;) {
-      grew = false;
-      for (int c = 0; c < NC; ++c) {
-        bool any = false;
-        for (int k = 0; k < t.nframes[c]; ++k) any = any || reached[r.set_of[t.frame_base[c] + k]];
-        if (!any) continue;
-        for (int k = 0; k < t.nframes[c]; ++k)
-          if (!reached[r.set_of[t.frame_base[c] + k]]) reached[r.set_of[t.frame_base[c] + k]] = grew = true;
+    std::array<int, NF> joined{};
+    for (int s = 0; s < NF; ++s) joined[s] = s;
+    for (int c = 0; c < NC; ++c)
+      for (int k = 1; k < t.nframes[c]; ++k) {
+        const int a = find_root(joined, r.set_of[t.frame_base[c]]), b = find_root(joined, r.set_of[t.frame_base[c] + k]);
+        if (a != b) joined[b] = a;
       }
-    }
+    const int world = find_root(joined, r.set_of[t.frame_base[r.world]]);
     for (int c = 0; c < NC && r.unreached < 0; ++c)
-      if (!reached[r.set_of[t.frame_base[c]]]) r.unreached = c;
+      if (find_root(joined, r.set_of[t.frame_base[c]]) != world) r.unreached = c;
   }
   return r;
 }

@@ -8,13 +8,13 @@
 // The state is x = (q, v): every joint's coordinates, then every joint's
 // rates, joints in scene order. q̇ comes from each joint (q̇ = v for one-axis
 // joints, a quaternion's rate for a Spherical joint), v̇ from the recursive
-// algorithms (dynamics/forward_dynamics.hpp).
+// algorithm the scene calls for (dynamics/algorithm.hpp).
 #pragma once
 #include "flange/detail/inline.hpp"
 #include <array>
 #include <utility>
 
-#include "flange/dynamics/forward_dynamics.hpp"
+#include "flange/dynamics/algorithm.hpp"
 #include "flange/dynamics/model.hpp"
 #include "flange/scene/scene.hpp"
 

@@ -1,0 +1,99 @@
+// Which forward-dynamics algorithm a scene's type calls for, chosen at compile
+// time from a cost model, and v̇ by it.
+//
+// flange has two: Newton–Euler for the bias, the composite-rigid-body mass
+// matrix and an unrolled LDLᵀ (forward_dynamics.hpp), and Featherstone's
+// articulated-body algorithm (articulated_body.hpp). The first is cheapest on
+// small scenes, but its mass matrix carries every column up through every
+// ancestor and its LDLᵀ is dense, so on a chain of N links its work grows like
+// N² and N³ (and so does its unrolled code, and the compiler's time). The
+// second does a fixed amount of work per link. The model estimates both in
+// nanoseconds from the tree's shape (measured constants, docs/performance.md
+// "Choosing the algorithm"):
+//
+//   newton_euler_mass_matrix ≈ Σ_links nv·(a + b·(rates of its ancestors))
+//   articulated_body         ≈ Σ_links (c + d·(nv − 1)²)
+//
+// with one set of constants for the spatial algebra and one for the planar,
+// and b and c larger for a link turned by a general rotation than by a
+// typed one. The crossover this gives on chains: 10 links with run-time axes,
+// 12 with coordinate axes, 22 in a plane; the floating legged robot (18
+// rates, branches 3 deep) stays with Newton–Euler.
+// A scene with loops always takes the first: its constraint solve needs M.
+#pragma once
+#include "flange/dynamics/articulated_body.hpp"
+#include "flange/dynamics/forward_dynamics.hpp"
+
+namespace flange {
+
+enum class forward_algorithm { newton_euler_mass_matrix, articulated_body };
+
+namespace detail {
+
+/// The model's constants, ns (g++ 12 -O3; docs/performance.md, "Choosing the
+/// algorithm"). Newton–Euler + mass matrix: ne_rate per rate, and carry per
+/// mass-matrix entry a column is carried through (a rate times each rate of
+/// its ancestors), through a general rotation or a typed one (a coordinate
+/// axis); articulated body: per link, by its rotation, plus per_dof·(nv − 1)²
+/// for a joint of several rates (its D⁻¹).
+struct algorithm_costs {
+  double ne_rate, carry_general, carry_typed, aba_general, aba_typed, aba_dof;
+};
+template <class A>
+constexpr algorithm_costs costs_for() {
+  if constexpr (A::planar) return {12.8, 3.9, 3.9, 52, 52, 22};
+  else return {17.7, 31.7, 20, 150, 125, 22};
+}
+
+/// Whether link L turns its parent's coordinates by a general 3 × 3 rotation
+/// (a run-time axis, a free orientation) rather than a typed one.
+template <class S, int L>
+constexpr bool general_rotation() {
+  using M = decltype(make_link_motion<spatial_algebra, double, L, true>(std::declval<const S&>(),
+                                                                         static_cast<const double*>(nullptr)));
+  return std::is_same_v<std::remove_cvref_t<decltype(std::declval<const M&>().E())>, Mat3<double>>;
+}
+
+/// The two estimates for scene S, ns: {Newton–Euler + mass matrix, articulated body}.
+template <class S>
+constexpr std::pair<double, double> algorithm_estimates() {
+  constexpr auto k = costs_for<algebra_t<S>>();
+  constexpr auto& tree = S::tree;
+  constexpr auto general = []<int... L>(std::integer_sequence<int, L...>) {
+    return std::array<bool, sizeof...(L) + 1>{false, general_rotation<S, L + 1>()...};
+  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+  double ne = 0, aba = 0;
+  for (int L = 1; L < tree.n_links; ++L) {
+    const int nv = S::table.nv[tree.link_joint[L]];
+    int above = 0;  // rates of the link's ancestors: the entries its columns are carried through
+    for (int P = tree.link_parent[L]; P > 0; P = tree.link_parent[P]) above += S::table.nv[tree.link_joint[P]];
+    ne += k.ne_rate * nv + (general[L] ? k.carry_general : k.carry_typed) * nv * above;
+    aba += (general[L] ? k.aba_general : k.aba_typed) + k.aba_dof * (nv - 1) * (nv - 1);
+  }
+  return {ne, aba};
+}
+
+}  // namespace detail
+
+/// The algorithm accelerations() uses for scene S.
+template <class S>
+constexpr forward_algorithm algorithm_for() {
+  if constexpr (detail::has_loops<S>) {
+    return forward_algorithm::newton_euler_mass_matrix;
+  } else {
+    constexpr auto e = detail::algorithm_estimates<S>();
+    return e.second < e.first ? forward_algorithm::articulated_body : forward_algorithm::newton_euler_mass_matrix;
+  }
+}
+
+/// v̇ at (t, q, v) by the algorithm the scene's type calls for (algorithm_for).
+/// Throws simulation_error if the mass matrix (or an articulated inertia) is singular.
+template <class S, class T>
+void accelerations(const S& scene, const T& t, const T* q, const T* v, T* vdot) {
+  if constexpr (algorithm_for<S>() == forward_algorithm::articulated_body)
+    accelerations_articulated_body(scene, t, q, v, vdot);
+  else
+    accelerations_mass_matrix(scene, t, q, v, vdot);
+}
+
+}  // namespace flange

@@ -1,0 +1,125 @@
+// Scenes of robot size and beyond: a spatial chain of 64 links (run-time
+// axes) and a floating tree of 32 joints (models::legged<4, 8>, 38 rates); built
+// with -DFLANGE_LARGE_CHAIN=128 -DFLANGE_LARGE_LEGS=15, a chain of 128 links
+// and a tree of 60 joints (66 rates), too costly to compile in every CI run
+// (docs/performance.md, "Compile time at scale").
+// Both compile, both take the articulated-body algorithm by the cost model
+// (dynamics/algorithm.hpp), and their accelerations are checked against a
+// second algorithm: Newton–Euler inverse dynamics (newton_euler.hpp) at the
+// computed v̇ must give back the joints' forces, zero here, to round-off of
+// the bias forces it balances. (Newton–Euler with the mass matrix, the other
+// forward algorithm, is checked against the articulated body on every
+// random tree of tree_test and tree_joints_test; its unrolled N³ LDLᵀ is
+// not built at this size.) The chain also conserves energy under RK4, and
+// neither the derivative nor a stepping loop touches the heap
+// (allocation_counter.cpp).
+#include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
+#include <catch2/catch.hpp>
+#include <flange/flange.hpp>
+#include <flange/models/chain.hpp>
+#include <flange/models/legged.hpp>
+#include <random>
+
+#include "allocation_counter.hpp"
+
+using namespace flange;
+
+namespace {
+
+#ifndef FLANGE_LARGE_CHAIN
+#define FLANGE_LARGE_CHAIN 64
+#endif
+#ifndef FLANGE_LARGE_LEGS
+#define FLANGE_LARGE_LEGS 8
+#endif
+constexpr int chain_links = FLANGE_LARGE_CHAIN, leg_links = FLANGE_LARGE_LEGS;
+
+auto long_chain() {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.2, 1.0), s(-1, 1);
+  models::chain_params<chain_links> p;
+  for (int i = 0; i < chain_links; ++i) {
+    p.axis[i] = Vec3d(s(rng), s(rng), 1).normalized();
+    p.d[i] = Vec3d(0.1 * u(rng), 0.01 * s(rng), 0.01 * s(rng));
+    p.m[i] = u(rng);
+    p.J[i] = Vec3d(0.05, 0.06, 0.07).asDiagonal() * 1e-2;
+  }
+  return models::chain<chain_links, models::runtime_axes>(p);
+}
+
+template <class S>
+typename S::state_type random_state(std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> s(-1, 1);
+  typename S::state_type x;
+  for (auto& v : x) v = s(rng);
+  return x;
+}
+
+/// max |ID(q, v, v̇) − τ| / max |ID(q, v, 0)|, τ = 0: how far the computed v̇
+/// is from balancing the bias forces, relative to them.
+template <class S>
+double inverse_dynamics_residual(const S& scene, const typename S::state_type& x) {
+  typename S::state_type dx{};
+  scene(x, dx, 0.0);
+  const double* q = x.data();
+  const double* v = x.data() + S::n_q;
+  const auto tau = inverse_dynamics(scene, 0.0, q, v, dx.data() + S::n_q);
+  const std::array<double, S::n_v> zero{};
+  const auto b = inverse_dynamics(scene, 0.0, q, v, zero.data());
+  double r = 0, scale = 0;
+  for (int i = 0; i < S::n_v; ++i) {
+    r = std::max(r, std::abs(tau[i]));
+    scale = std::max(scale, std::abs(b[i]));
+  }
+  return r / scale;
+}
+
+}  // namespace
+
+TEST_CASE("a long spatial chain takes the articulated body and balances its inverse dynamics") {
+  const auto c = long_chain();
+  using S = std::remove_cvref_t<decltype(c)>;
+  STATIC_REQUIRE(S::n_v == chain_links);
+  STATIC_REQUIRE(algorithm_for<S>() == forward_algorithm::articulated_body);
+  for (std::uint32_t seed = 1; seed <= 3; ++seed) {
+    const double r = inverse_dynamics_residual(c, random_state<S>(seed));
+    INFO("seed " << seed << ": residual " << r);
+    CHECK(r < 1e-12);  // round-off of sums over the links, n·ε ≈ 1e-14 (measured ≤ 3e-16)
+  }
+}
+
+TEST_CASE("a long spatial chain steps under RK4 without the heap") {
+  const auto c = long_chain();
+  using S = std::remove_cvref_t<decltype(c)>;
+  auto x = random_state<S>(4);
+  boost::numeric::odeint::runge_kutta4<typename S::state_type> rk4;
+  typename S::state_type dx{};
+  CHECK(test::count_allocations([&] { c(x, dx, 0.0); }) == 0);
+  double t = 0;
+  const double dt = 1e-4;
+  CHECK(test::count_allocations([&] {
+          for (int k = 0; k < 20; ++k, t += dt) rk4.do_step(std::cref(c), x, t, dt);
+        }) == 0);
+  bool finite = true;
+  for (const double xi : x) finite = finite && std::isfinite(xi);
+  CHECK(finite);
+}
+
+TEST_CASE("a floating tree of four long legs takes the articulated body and balances its inverse dynamics") {
+  const auto t = models::legged<4, leg_links>();
+  using S = std::remove_cvref_t<decltype(t)>;
+  STATIC_REQUIRE(S::n_v == 6 + 4 * leg_links);
+  STATIC_REQUIRE(algorithm_for<S>() == forward_algorithm::articulated_body);
+  for (std::uint32_t seed = 1; seed <= 3; ++seed) {
+    auto x = random_state<S>(seed);
+    double n = 0;
+    for (int i = 3; i < 7; ++i) n += x[i] * x[i];
+    for (int i = 3; i < 7; ++i) x[i] /= std::sqrt(n);
+    const double r = inverse_dynamics_residual(t, x);
+    INFO("seed " << seed << ": residual " << r);
+    CHECK(r < 1e-12);  // round-off of sums over the links, n·ε ≈ 1e-14 (measured ≤ 3e-16)
+    typename S::state_type dx{};
+    CHECK(test::count_allocations([&] { t(x, dx, 0.0); }) == 0);
+  }
+}
