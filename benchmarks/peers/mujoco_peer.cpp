@@ -34,6 +34,7 @@
 #include <iostream>
 #include <memory>
 
+#include "mujoco_models.hpp"
 #include "peer_common.hpp"
 
 namespace {
@@ -78,31 +79,6 @@ std::string free_body_xml() {
   return x.str();
 }
 
-std::string legged_xml() {
-  std::ostringstream x;
-  x << "<mujoco model='legged'><compiler angle='radian'/>"
-    << "<option gravity='0 " << -peer::g << " 0'><flag contact='disable' constraint='disable'/></option>"
-    << "<worldbody><body name='trunk'><freejoint/>"
-    << "<inertial pos='0 0 0' mass='" << peer::legged_trunk_m << "' diaginertia='" << peer::legged_trunk_J[0] << ' '
-    << peer::legged_trunk_J[1] << ' ' << peer::legged_trunk_J[2] << "'/>";
-  for (int k = 0; k < 4; ++k) {
-    const double sx = (k % 2 ? -1 : 1) * peer::legged_hip_x, sz = (k / 2 ? -1 : 1) * peer::legged_hip_z;
-    for (int j = 0; j < 3; ++j) {
-      x << "<body pos='";
-      if (j == 0) x << sx << " 0 " << sz;
-      else x << "0 " << -peer::legged_link_L << " 0";
-      x << "'><joint type='hinge' axis='" << (j == 0 ? "0 1 0" : "1 0 0")
-        << "' armature='0' damping='0' limited='false'/>"
-        << "<inertial pos='0 " << -0.5 * peer::legged_link_L << " 0' mass='" << peer::legged_link_m
-        << "' diaginertia='" << peer::legged_link_J[0] << ' ' << peer::legged_link_J[1] << ' ' << peer::legged_link_J[2]
-        << "'/>";
-    }
-    x << "</body></body></body>";
-  }
-  x << "</body></worldbody></mujoco>";
-  return x.str();
-}
-
 /// The four-bar: three hinges about z in a chain, and an equality
 /// constraint ("connect") pinning the rocker's end to the world. MuJoCo's
 /// constraints are soft (its default solref 0.02 s, solimp): the loop is
@@ -137,42 +113,6 @@ std::string fourbar_xml(const std::vector<double>& x0) {
   return x.str();
 }
 
-/// flange's state (q, v) to MuJoCo's qpos, qvel and back: the same but for a
-/// free joint's quaternion, (x, y, z, w) in flange and (w, x, y, z) in MuJoCo.
-void to_mujoco(const mjModel* m, const std::vector<double>& x, mjData* d) {
-  for (int i = 0; i < m->nq; ++i) d->qpos[i] = x[i];
-  for (int i = 0; i < m->nv; ++i) d->qvel[i] = x[m->nq + i];
-  for (int j = 0; j < m->njnt; ++j)
-    if (m->jnt_type[j] == mjJNT_FREE) {
-      const int a = m->jnt_qposadr[j] + 3;
-      d->qpos[a] = x[a + 3];
-      for (int c = 0; c < 3; ++c) d->qpos[a + 1 + c] = x[a + c];
-    }
-}
-std::vector<double> from_mujoco(const mjModel* m, const mjData* d) {
-  std::vector<double> x(m->nq + m->nv);
-  for (int i = 0; i < m->nq; ++i) x[i] = d->qpos[i];
-  for (int i = 0; i < m->nv; ++i) x[m->nq + i] = d->qvel[i];
-  for (int j = 0; j < m->njnt; ++j)
-    if (m->jnt_type[j] == mjJNT_FREE) {
-      const int a = m->jnt_qposadr[j] + 3;
-      x[a + 3] = d->qpos[a];
-      for (int c = 0; c < 3; ++c) x[a + c] = d->qpos[a + 1 + c];
-    }
-  return x;
-}
-
-mjModel* load(const std::string& xml) {
-  auto vfs = std::make_unique<mjVFS>();  // large: keep it off the stack
-  mj_defaultVFS(vfs.get());
-  if (mj_makeEmptyFileVFS(vfs.get(), "scene.xml", static_cast<int>(xml.size())) != 0) return nullptr;
-  std::memcpy(vfs->filedata[vfs->nfile - 1], xml.data(), xml.size());
-  char err[1000] = "";
-  mjModel* m = mj_loadXML("scene.xml", vfs.get(), err, sizeof err);
-  if (!m) std::printf("mujoco: %s\n", err);
-  mj_deleteVFS(vfs.get());
-  return m;
-}
 
 /// The inputs, set where MuJoCo reads them at every stage of a step.
 void control(const mjModel* m, mjData* d) {
@@ -180,7 +120,7 @@ void control(const mjModel* m, mjData* d) {
 }
 
 void study(const std::string& name, const std::string& xml, const peer::reference& ref, bool quick) {
-  mjModel* m = load(xml);
+  mjModel* m = peer::load(xml);
   if (!m) return;
   mjData* d = mj_makeData(m);
   if (static_cast<std::size_t>(m->nq + m->nv) != ref.x0.size()) {
@@ -206,11 +146,11 @@ void study(const std::string& name, const std::string& xml, const peer::referenc
       m->opt.timestep = ref.T / n;
       auto run = [&] {
         mj_resetData(m, d);
-        to_mujoco(m, ref.x0, d);
+        peer::to_mujoco(m, ref.x0, d);
         for (long k = 0; k < n; ++k) mj_step(m, d);
       };
       run();
-      const double e = peer::scaled_error(from_mujoco(m, d), ref.x);
+      const double e = peer::scaled_error(peer::from_mujoco(m, d), ref.x);
       if (!(e <= 1)) continue;  // diverged: left out, as flange's runs are
       const double sec = peer::median_seconds(run, quick ? 3 : 5, quick ? 5e-4 : 3e-3) / ref.T;
       peer::print_row(name, in.name, "dt", ref.T / n, e, sec, n * in.evals_per_step, n, 0);
@@ -236,7 +176,7 @@ int main(int argc, char** argv) {
   for (const auto& [name, xml] : {std::pair{std::string("robot_arm"), arm_xml()},
                                   {"gantry_crane", crane_xml()},
                                   {"free_body", free_body_xml()},
-                                  {"legged", legged_xml()},
+                                  {"legged", peer::legged_xml(4, 3)},
                                   {"fourbar", std::string()}}) {
     if (!o.scene.empty() && o.scene != name) continue;
     const auto r = refs.find(name);
