@@ -21,17 +21,6 @@
 
 #include "scale.hpp"
 
-namespace scale {
-void planar_chains();
-void spatial_chains();
-void spatial_typed_chains();
-void trees();
-void planar_chains_large();
-void spatial_chains_large();
-void spatial_typed_chains_large();
-void trees_large();
-}  // namespace scale
-
 namespace {
 double exponent(const std::vector<std::pair<double, double>>& pts) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;

@@ -26,6 +26,17 @@
 
 namespace scale {
 
+// The cases, one translation unit per kind (chains_*.cpp, tree.cpp; the
+// large ones in large.cpp), run by scale.cpp.
+void planar_chains();
+void spatial_chains();
+void spatial_typed_chains();
+void trees();
+void planar_chains_large();
+void spatial_chains_large();
+void spatial_typed_chains_large();
+void trees_large();
+
 struct row {
   std::string scene;
   int n;
