@@ -1,8 +1,10 @@
 // Forward dynamics by Featherstone's articulated-body algorithm.
 //
-// It is flange's second algorithm: it shares the joints' motions and the
-// scene's constants with Newton–Euler plus the mass matrix, but none of their
-// passes, so the two agreeing is a real check. It runs in the same algebras
+// One of flange's two forward algorithms (algorithm.hpp picks one per scene;
+// large trees get this one, whose work grows linearly with the links). It
+// shares the joints' motions and the scene's constants with Newton–Euler plus
+// the mass matrix, but none of their passes, so the two agreeing is a real
+// check (other_algorithm.hpp). It runs in the same algebras
 // (algebra.hpp): 6-D in space, 3-D (ω_K and the plane's two directions) for a
 // planar scene, with motions (ω̇, a) and forces (n, f) at each link's origin
 // in link coordinates, accelerations "classic" as in kinematics.hpp:
@@ -14,7 +16,9 @@
 //   down:  a' = X·a_P + c, v̇ = D⁻¹·(u − Uᵀ·a'), a = a' + S·v̇
 //
 // with X the link's motion transform (rotation E, offset p) and a₀ = (0, −g).
-// Its matrices are dense in the algebra's dimensions.
+// I_A is kept as 3 × 3 blocks in space and as a 3 × 3 matrix in a plane
+// (articulated_inertia below); above 16 links each link's step is a function
+// of its own (links.hpp, for_links_split).
 #pragma once
 #include "flange/scene/named_state.hpp"
 #include "flange/detail/inline.hpp"
