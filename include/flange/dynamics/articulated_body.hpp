@@ -26,6 +26,7 @@
 #include <tuple>
 
 #include "flange/dynamics/forward_dynamics.hpp"
+#include "flange/math/rotation.hpp"
 #include "flange/math/small_matrix.hpp"
 
 namespace flange {
@@ -148,16 +149,6 @@ FLANGE_INLINE aba_force<A, T> as_force(const N& n, const F& f) {
   return {fit<A::angular_mask>(n), fit<A::linear_mask>(f)};
 }
 
-/// The cross-product matrix: skew(p)·x = p × x.
-template <class T>
-FLANGE_INLINE Mat3<T> skew(const Vec3<T>& p) {
-  Mat3<T> P;
-  P(0, 0) = T(0), P(0, 1) = -p(2), P(0, 2) = p(1);
-  P(1, 0) = p(2), P(1, 1) = T(0), P(1, 2) = -p(0);
-  P(2, 0) = -p(1), P(2, 1) = p(0), P(2, 2) = T(0);
-  return P;
-}
-
 /// An articulated-body inertia: the symmetric map from a link's acceleration
 /// (α, a) to the force (n, f) its subtree resists with. In space it is kept
 /// as three 3 × 3 blocks, n = Θ·α + H·a, f = Hᵀ·α + M·a, and carried to the
@@ -178,7 +169,7 @@ struct articulated_inertia<spatial_algebra, T> {
 
   template <class R>
   FLANGE_INLINE static articulated_inertia rigid(const R& r) {
-    articulated_inertia a{to_matrix<T>(r.I_o), skew<T>(r.h.dense()), {}};
+    articulated_inertia a{to_matrix<T>(r.I_o), tilde<T>(r.h.dense()), {}};
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) a.M(i, j) = i == j ? r.m : T(0);
     return a;
@@ -207,7 +198,7 @@ struct articulated_inertia<spatial_algebra, T> {
     if constexpr (is_zero_vec<decltype(m.p)>) {
       small::add_to(H, Hr);
     } else {
-      const Mat3<T> P = skew<T>(m.p.dense());
+      const Mat3<T> P = tilde<T>(m.p.dense());
       Mat3<T> Hs = Hr;
       small::add_to(Hs, small::mul(P, Mr));
       small::add_to(Th, small::mul_nt(P, Hr));
@@ -313,15 +304,12 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
     constexpr int L = decltype(l)::value;
     using LI = link_info<S, L>;
     auto& w = std::get<L - 1>(ws);
-    const auto k = [&]() FLANGE_INLINE_LAMBDA {
-      if constexpr (LI::parent != 0) {
-        const auto moving = link_kinematics{std::get<LI::parent - 1>(ws).w, zero_vec<T>{}, zero_vec<T>{}};
-        return forward_step<T>(moving, std::get<L - 1>(motions), v + LI::v, no_rates{});
-      } else {
-        const auto rest = link_kinematics{zero_vec<T>{}, zero_vec<T>{}, zero_vec<T>{}};
-        return forward_step<T>(rest, std::get<L - 1>(motions), v + LI::v, no_rates{});
-      }
+    const auto wP = [&]() FLANGE_INLINE_LAMBDA {  // the parent's ω (the World's is zero)
+      if constexpr (LI::parent != 0) return std::get<LI::parent - 1>(ws).w;
+      else return zero_vec<T>{};
     }();
+    const auto k = forward_step<T>(link_kinematics{wP, zero_vec<T>{}, zero_vec<T>{}}, std::get<L - 1>(motions),
+                                   v + LI::v, no_rates{});
     w.w = fit<A::angular_mask>(k.w);
     w.c = as_motion<A, T>(k.wd, k.a);
     const auto pA = own_wrench<A, T, L>(scene, link_kinematics{k.w, zero_vec<T>{}, zero_vec<T>{}}, n_ext, f_ext);
