@@ -21,7 +21,9 @@
 //   planar_normal(), moves_in_plane(K)  what planar arithmetic needs to know
 //
 // and optionally generalized_force(t, x, tau) (inputs and axis laws on its
-// coordinates), elastic_energy(q), and as_cut: what it leaves free when it
+// coordinates), elastic_energy(q), fixed_subspace (true when m.col<k>() is
+// the same at every q, either way round: a scene whose joints all hang from
+// the World then folds its constant mass matrix, dynamics/model.hpp), and as_cut: what it leaves free when it
 // closes a loop (cut_freedom below; a joint without it cannot be cut), with
 // cut_state(R, p, w, ṗ, q, v): its coordinates and rates from its frames'
 // relative pose and motion, for recovering a cut joint's internals. scene/joint_check.hpp turns a missing

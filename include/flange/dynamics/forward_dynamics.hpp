@@ -3,7 +3,9 @@
 // a planar scene, spatial otherwise. b is the Newton–Euler bias
 // (newton_euler.hpp), M the composite-rigid-body mass matrix
 // (mass_matrix.hpp), τ the joints' own generalized forces (inputs and axis
-// laws), and the solve an unrolled LDLᵀ with a relative pivot test (ldlt.hpp).
+// laws), and the solve an unrolled LDLᵀ with a relative pivot test (ldlt.hpp);
+// where M does not depend on q (model.hpp, constant_mass_matrix), its
+// inverse folded at construction instead.
 //
 // accelerations_newton_euler and accelerations_planar force one algebra, for
 // the tests that hold the two against each other.
@@ -108,7 +110,7 @@ template <class A, class S, class T, class M, class PM>
   const auto x = state_view<S>(q, v);
   link_loads<S, T> n_ext, f_ext;
   gather_external<A>(scene, t, x, motions, pose, n_ext, f_ext);
-  std::array<T, N> b, scale, r;
+  std::array<T, N> b, r;
   inverse_dynamics<A>(scene, motions, v, no_rates{}, n_ext, f_ext, b.data());
   if constexpr (has_joint_forces<S>()) {
     std::array<T, N> tau;
@@ -117,18 +119,37 @@ template <class A, class S, class T, class M, class PM>
   } else {
     for (int i = 0; i < N; ++i) r[i] = -b[i];
   }
-  Eigen::Matrix<T, N, N> Mm;
-  mass_matrix<A>(scene, motions, Mm, scale.data());
-  if constexpr (has_loops<S>) {
-    ldlt_pivots<N, T> f;
-    if (const auto pivot = ldlt_factor<N>(Mm, f, scale.data()); pivot.index >= 0) [[unlikely]]
-      singular_mass_matrix<S>(pivot, t, q, v);
-    std::array<T, N> y;
-    ldlt_solve<N>(Mm, f, r.data(), y.data());
-    constrained_accelerations(scene, pose, Mm, f, v, y.data(), vdot, lambda);
+  if constexpr (constant_mass_matrix<S>()) {
+    // M does not depend on q: v̇ = M⁻¹·r with M⁻¹ folded at construction,
+    // block by block (model.hpp). No mass-matrix pass, no division.
+    const auto& m = scene.model();
+    if (m.mass_pivot.index >= 0) [[unlikely]]
+      singular_mass_matrix<S>(pivot_report<T>{m.mass_pivot.index, T(m.mass_pivot.d), T(m.mass_pivot.scale)}, t, q, v);
+    for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
+      constexpr int L = decltype(l)::value;
+      using LI = link_info<S, L>;
+      constexpr int o = constant_mass_offset<S, L>();
+      for (int i = 0; i < LI::nv; ++i) {
+        T a = T(m.inverse_mass[o + i * LI::nv]) * r[LI::v];
+        for (int j = 1; j < LI::nv; ++j) a += T(m.inverse_mass[o + i * LI::nv + j]) * r[LI::v + j];
+        vdot[LI::v + i] = a;
+      }
+    });
   } else {
-    if (const auto pivot = solve_spd<N>(Mm, r.data(), vdot, scale.data()); pivot.index >= 0) [[unlikely]]
-      singular_mass_matrix<S>(pivot, t, q, v);
+    Eigen::Matrix<T, N, N> Mm;
+    std::array<T, N> scale;
+    mass_matrix<A>(scene, motions, Mm, scale.data());
+    if constexpr (has_loops<S>) {
+      ldlt_pivots<N, T> f;
+      if (const auto pivot = ldlt_factor<N>(Mm, f, scale.data()); pivot.index >= 0) [[unlikely]]
+        singular_mass_matrix<S>(pivot, t, q, v);
+      std::array<T, N> y;
+      ldlt_solve<N>(Mm, f, r.data(), y.data());
+      constrained_accelerations(scene, pose, Mm, f, v, y.data(), vdot, lambda);
+    } else {
+      if (const auto pivot = solve_spd<N>(Mm, r.data(), vdot, scale.data()); pivot.index >= 0) [[unlikely]]
+        singular_mass_matrix<S>(pivot, t, q, v);
+    }
   }
 }
 

@@ -204,4 +204,40 @@ FLANGE_INLINE void mass_matrix(const S& scene, const Motions& motions, MM& M, T*
   walk<S, 0>(ctx, nothing{});
 }
 
+/// Folds a constant M (constant_mass_matrix, model.hpp) into the model at
+/// construction: M from this pass at the neutral configuration (any would
+/// do), factored with the pivot test the derivative uses, and each link's
+/// diagonal block of M⁻¹ kept; or, if a pivot fails, that pivot, for the
+/// derivative to report with its time and state.
+template <class S, class Model>
+void fold_mass_matrix(const S& scene, Model& model) {
+  constexpr int N = S::n_v;
+  std::array<double, S::n_q> q{};
+  for_links<S>([&](auto l) {
+    using LI = link_info<S, decltype(l)::value>;
+    const auto q0 = LI::joint_type::neutral();
+    for (int i = 0; i < LI::nq; ++i) q[LI::q + i] = q0[i];
+  });
+  const auto motions = link_motions<spatial_algebra, double, true>(scene, q.data());
+  Eigen::Matrix<double, N, N> M;
+  std::array<double, N> scale;
+  mass_matrix<spatial_algebra>(scene, motions, M, scale.data());
+  ldlt_pivots<N, double> f;
+  if (const auto p = ldlt_factor<N>(M, f, scale.data()); p.index >= 0) {
+    model.mass_pivot = p;
+    return;
+  }
+  model.mass_pivot = {};
+  for_links<S>([&](auto l) {
+    constexpr int L = decltype(l)::value;
+    using LI = link_info<S, L>;
+    for (int j = 0; j < LI::nv; ++j) {
+      std::array<double, N> e{}, x;
+      e[LI::v + j] = 1;
+      ldlt_solve<N>(M, f, e.data(), x.data());
+      for (int i = 0; i < LI::nv; ++i) model.inverse_mass[constant_mass_offset<S, L>() + i * LI::nv + j] = x[LI::v + i];
+    }
+  });
+}
+
 }  // namespace flange::detail

@@ -1,8 +1,10 @@
 // What the recursive algorithms precompute at scene construction: every
 // connection set's pose relative to its link's origin (rigid edges folded:
 // FixedTranslation's offset, FixedRotation's rotation), and every link's
-// rigid-body inertia (all the bodies that move with it). These are constants
-// of the scene, so the derivative never recomputes them.
+// rigid-body inertia (all the bodies that move with it), and, where the
+// scene's type shows the mass matrix does not depend on q
+// (constant_mass_matrix), its inverse. These are constants of the scene, so
+// the derivative never recomputes them.
 #pragma once
 #include "flange/detail/inline.hpp"
 #include <algorithm>
@@ -12,6 +14,7 @@
 
 #include "flange/core/component.hpp"
 #include "flange/core/joint.hpp"
+#include "flange/dynamics/ldlt.hpp"
 #include "flange/math/rotation.hpp"
 
 namespace flange::detail {
@@ -37,12 +40,63 @@ struct rigid_inertia {
   }
 };
 
-template <int NL, int NS>
+/// Whether the scene's tree is one the dynamics can walk (no loop, nothing floating).
+template <class S>
+inline constexpr bool walkable = S::topology.ok() && S::tree.loop < 0 && S::tree.floating < 0;
+
+/// A joint whose motion subspace, in its link's coordinates, is the same at
+/// every q (core/joint.hpp: the optional member fixed_subspace).
+template <class J>
+inline constexpr bool fixed_subspace = requires {
+  requires J::fixed_subspace;
+};
+
+/// Does M(q) not depend on q? It does not when every joint hangs from the
+/// root link (no joint moves another, and no loop is cut) and every joint's
+/// motion subspace is fixed in its link: M is then block diagonal, each
+/// block Sᵀ·I·S of one link's own inertia. The paper's robot arm is one.
+/// Such an M is inverted once, at construction (fold_mass_matrix,
+/// mass_matrix.hpp), and the derivative multiplies by the inverse.
+template <class S>
+constexpr bool constant_mass_matrix() {
+  if constexpr (!walkable<S> || S::tree.n_cuts > 0 || S::tree.n_links < 2) {
+    return false;
+  } else {
+    return []<int... L>(std::integer_sequence<int, L...>) {
+      return ((S::tree.link_parent[L + 1] == 0 &&
+               fixed_subspace<typename S::template component_type<S::tree.link_joint[L + 1]>>) &&
+              ...);
+    }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+  }
+}
+
+/// Where link L's block of a constant M⁻¹ starts (row-major nv × nv blocks,
+/// links in order); at L = n_links, the storage they need.
+template <class S, int L>
+constexpr int constant_mass_offset() {
+  int n = 0;
+  for (int l = 1; l < L; ++l) n += S::table.nv[S::tree.link_joint[l]] * S::table.nv[S::tree.link_joint[l]];
+  return n;
+}
+
+struct no_constant_mass {};
+
+template <int NL, int NS, int NB = 0>
 struct dynamics_model {
   std::array<Vec3d, NS> set_offset{};    ///< a set's origin in its link's coordinates
   std::array<Mat3d, NS> set_rotation{};  ///< rotates link coordinates into the set's
   std::array<rigid_inertia<double>, NL> link{};
+  /// A constant M's inverse, link by link (its diagonal blocks), and its
+  /// failed pivot if it is singular: the derivative reports that with the
+  /// time and state of the call, as for any singular M.
+  [[no_unique_address]] std::conditional_t<NB == 0, no_constant_mass, std::array<double, NB>> inverse_mass{};
+  [[no_unique_address]] std::conditional_t<NB == 0, no_constant_mass, pivot_report<double>> mass_pivot{};
 };
+
+/// The model of scene S.
+template <class S>
+using model_for = dynamics_model<S::tree.n_links, (S::topology.n_sets == 0 ? 1 : S::topology.n_sets),
+                                 constant_mass_matrix<S>() ? constant_mass_offset<S, S::tree.n_links>() : 0>;
 
 template <class S, class F>
 void for_each_component(const S& scene, F&& f) {
@@ -70,15 +124,11 @@ std::string describe_component(const S& scene, int c) {
   return r;
 }
 
-/// Whether the scene's tree is one the dynamics can walk (no loop, nothing floating).
-template <class S>
-inline constexpr bool walkable = S::topology.ok() && S::tree.loop < 0 && S::tree.floating < 0;
-
 template <class S>
 auto build_model(const S& scene) {
   constexpr auto& tree = S::tree;
   constexpr auto& topo = S::topology;
-  dynamics_model<tree.n_links, topo.n_sets == 0 ? 1 : topo.n_sets> model{};
+  model_for<S> model{};
   model.set_offset.fill(Vec3d::Zero());  // Eigen leaves its vectors uninitialised
   model.set_rotation.fill(Mat3d::Identity());
   if constexpr (walkable<S>) {

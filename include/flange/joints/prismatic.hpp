@@ -133,6 +133,8 @@ class Prismatic {
   // ---------------------------------------------------------- motion
   static constexpr int nq = 1, nv = 1;
   static constexpr bool reversible = true;
+  /// Its axis is fixed in its link: S does not depend on q (core/joint.hpp).
+  static constexpr bool fixed_subspace = true;
   /// It does not turn; it slides in the plane normal to k when its axis is another coordinate axis.
   static constexpr int planar_normal() { return -2; }
   static constexpr bool moves_in_plane(int k) { return Axis::fixed && Axis::index != k; }

@@ -191,6 +191,8 @@ class Revolute {
   // ---------------------------------------------------------- motion
   static constexpr int nq = 1, nv = 1;
   static constexpr bool reversible = true;
+  /// Its axis is fixed in its link: S does not depend on q (core/joint.hpp).
+  static constexpr bool fixed_subspace = true;
   /// It turns about its axis: a coordinate axis makes it planar about that axis.
   static constexpr int planar_normal() { return Axis::fixed ? Axis::index : -1; }
   static constexpr bool moves_in_plane(int k) { return Axis::fixed && Axis::index == k; }

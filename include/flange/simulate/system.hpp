@@ -24,9 +24,11 @@ template <class S>
 class System : public S {
  public:
   using scene_type = S;
-  using model_type = detail::dynamics_model<S::tree.n_links, (S::topology.n_sets == 0 ? 1 : S::topology.n_sets)>;
+  using model_type = detail::model_for<S>;
 
-  explicit System(S s) : S(std::move(s)), model_(detail::build_model(static_cast<const S&>(*this))) {}
+  explicit System(S s) : S(std::move(s)), model_(detail::build_model(static_cast<const S&>(*this))) {
+    if constexpr (detail::constant_mass_matrix<S>()) detail::fold_mass_matrix(*this, model_);
+  }
 
   /// Constants the dynamics precompute (link inertias, set poses).
   [[nodiscard]] const model_type& model() const { return model_; }
