@@ -106,3 +106,22 @@ TEST_CASE("a singular constant M is reported at the evaluation, with its joint, 
   CHECK_THROWS_WITH(s(x, dx, 1.25), Contains("singular mass matrix") && Contains("t = 1.25") &&
                                         Contains("joint \"tilt\"") && Contains("moves nothing"));
 }
+
+TEST_CASE("a long-double derivative solves its own M, not the inverse folded in double") {
+  // The folded inverse is a double: a wider scalar forms M and solves it at
+  // its own precision (the long-double reference of docs/accuracy-vs-cost.md
+  // needs every digit).
+  using L = long double;
+  const auto s = rack(2.0);
+  const std::array<L, 6> x{0.3L, -0.2L, 1.1L, 0.7L, -0.4L, 2.0L};
+  std::array<L, 3> a;
+  accelerations(s, L(0), x.data(), x.data() + 3, a.data());
+  const auto M = mass_matrix(s, x.data());
+  const std::array<L, 3> zero{};
+  const auto bias = inverse_dynamics(s, L(0), x.data(), x.data() + 3, zero.data());
+  const Eigen::Matrix<L, 3, 1> d = M.ldlt().solve(Eigen::Matrix<L, 3, 1>(-bias[0], -0.5L - bias[1], -bias[2]));
+  L err = 0;
+  for (int i = 0; i < 3; ++i) err = std::max(err, std::abs(a[i] - d(i)) / std::abs(d(i)));
+  INFO("long double: folded path − dense solve " << double(err));
+  CHECK(err <= 1e-17L);
+}
