@@ -1,7 +1,9 @@
 // Per-step cost: the generated derivative against the paper's hand-written
 // closed form, compiled in the same binary, for the robot arm and the gantry
-// crane; one runge_kutta4 step with a std::array state (range_algebra) and an
-// Eigen state (vector_space_algebra); and the two algorithms (Newton–Euler +
+// crane, called independently (throughput) and in a chain (latency); one
+// runge_kutta4 step with a std::array state (array_algebra) and an Eigen
+// state (vector_space_algebra), the system handed over by std::cref and by
+// value; and the two algorithms (Newton–Euler +
 // mass matrix, the default, against articulated-body) on chains; and the
 // four-bar (a closed loop) against its hand-written one-coordinate equation
 // of motion and against the same bars as an open chain.
@@ -33,11 +35,30 @@ const auto crane = models::gantry_crane(crane_p, 0.7);
 const bench::handwritten_arm arm_hw{arm_p, 0.3};
 const bench::handwritten_crane crane_hw{crane_p, 0.7};
 
-template <class State, class Stepper, class System>
+/// runge_kutta4 steps, each from the state the last one reached. The system
+/// goes to Odeint by std::cref, as the README says (Odeint copies its system
+/// through four calls of every do_step: for a scene, its parameters and
+/// folded constants); ByValue hands it over by value instead, to measure that.
+template <class State, class Stepper, bool ByValue = false, class System>
 void rk4_steps(benchmark::State& st, const System& sys, State x) {
   Stepper stepper;
   for (auto _ : st) {
-    stepper.do_step(sys, x, 0.0, 1e-4);  // small steps: the state stays near its start
+    if constexpr (ByValue) stepper.do_step(sys, x, 0.0, 1e-4);  // small steps: the state stays near its start
+    else stepper.do_step(std::cref(sys), x, 0.0, 1e-4);
+    benchmark::DoNotOptimize(x);
+  }
+}
+
+/// Derivatives in a chain, x ← x + h·f(x): each call waits for the one
+/// before, as the four stages of a step do. bench::derivative's calls are
+/// independent, so the processor overlaps them: that measures throughput,
+/// this latency.
+template <class System, std::size_t N>
+void derivative_chained(benchmark::State& st, const System& sys, std::array<double, N> x) {
+  std::array<double, N> dx;
+  for (auto _ : st) {
+    sys(x, dx, 0.0);
+    for (std::size_t i = 0; i < N; ++i) x[i] += 1e-9 * dx[i];
     benchmark::DoNotOptimize(x);
   }
 }
@@ -200,8 +221,16 @@ void register_all() {
       [](benchmark::State& s) { rk4_steps<A2, rk4_array<A2>>(s, arm_hw, arm_x); });
   reg("robot_arm/rk4_step_array/checked", [](benchmark::State& s) {
     static budget b;
-    rk4_steps<A2, rk4_array<A2>>(s, checked(arm, b), arm_x);
+    rk4_steps<A2, rk4_array<A2>, true>(s, checked(arm, b), arm_x);  // checked() holds a reference
   });
+  reg("robot_arm/rk4_step_array/by_value", [](benchmark::State& s) { rk4_steps<A2, rk4_array<A2>, true>(s, arm, arm_x); });
+  reg("gantry_crane/rk4_step_array/by_value",
+      [](benchmark::State& s) { rk4_steps<A4, rk4_array<A4>, true>(s, crane, crane_x); });
+  reg("robot_arm/derivative_chained/generated", [](benchmark::State& s) { derivative_chained(s, arm, arm_x); });
+  reg("robot_arm/derivative_chained/handwritten", [](benchmark::State& s) { derivative_chained(s, arm_hw, arm_x); });
+  reg("gantry_crane/derivative_chained/generated", [](benchmark::State& s) { derivative_chained(s, crane, crane_x); });
+  reg("gantry_crane/derivative_chained/handwritten",
+      [](benchmark::State& s) { derivative_chained(s, crane_hw, crane_x); });
   reg("robot_arm/simulate_1s/checked", [](benchmark::State& s) { run_1s<true>(s, arm, arm_x); });
   reg("robot_arm/simulate_1s/raw", [](benchmark::State& s) { run_1s<false>(s, arm, arm_x); });
   reg("gantry_crane/simulate_1s/checked", [](benchmark::State& s) { run_1s<true>(s, crane, crane_x); });
@@ -275,12 +304,23 @@ int main(int argc, char** argv) {
   };
   std::printf("\n");
   for (const char* scene : {"robot_arm", "gantry_crane", "fourbar"})
-    for (const char* what : {"derivative", "rk4_step_array", "rk4_step_eigen"})
+    for (const char* what : {"derivative", "derivative_chained", "rk4_step_array", "rk4_step_eigen"})
       ratio("ratio", scene, what, "generated", "handwritten");
+  // A step against the four derivatives it evaluates, measured both ways:
+  // "<scene> <system> rk4_step/4_derivatives = x (chained y)".
+  for (const char* scene : {"robot_arm", "gantry_crane"})
+    for (const char* sys : {"generated", "handwritten"}) {
+      const auto at = [&](const std::string& what) { return rep.ns[std::string(scene) + "/" + what + "/" + sys]; };
+      const double step = at("rk4_step_array"), d = at("derivative"), dc = at("derivative_chained");
+      if (step > 0 && d > 0 && dc > 0)
+        std::printf("step %s %s rk4_step/4_derivatives = %.2f (chained %.2f)\n", scene, sys, step / (4 * d),
+                    step / (4 * dc));
+    }
   ratio("loop", "fourbar", "derivative", "generated", "open_chain");
   for (const char* scene : {"chain2_planar", "chain4_spatial", "chain8_spatial", "free_body", "legged"})
     ratio("algorithm", scene, "derivative", "newton_euler", "articulated_body");
   ratio("overhead", "robot_arm", "rk4_step_array", "checked", "generated");
+  for (const char* scene : {"robot_arm", "gantry_crane"}) ratio("overhead", scene, "rk4_step_array", "by_value", "generated");
   for (const char* scene : {"robot_arm", "gantry_crane"}) ratio("overhead", scene, "simulate_1s", "checked", "raw");
   for (const char* scene : {"robot_arm", "gantry_crane"})
     ratio("jacobian", scene, "jacobian", "dual", "finite_difference");

@@ -387,9 +387,12 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
                                  detail::type_list<state_size_given<n>, state_size_needed<n_state>>>());
     if constexpr (n < 0) {
       if (static_cast<std::size_t>(x.size()) != std::size_t(n_state)) [[unlikely]]
-        throw error(detail::concat("flange: a state of size ", x.size(), " was given, but the scene's state x = (q, v) has ",
-                                   n_state, " entries (", n_q, " joint coordinates and ", n_v, " rates)"));
+        wrong_state_size(static_cast<std::size_t>(x.size()));
     }
+  }
+  [[noreturn, gnu::cold, gnu::noinline]] static void wrong_state_size(std::size_t size) {
+    throw error(detail::concat("flange: a state of size ", size, " was given, but the scene's state x = (q, v) has ",
+                               n_state, " entries (", n_q, " joint coordinates and ", n_v, " rates)"));
   }
 
   // ---------------------------------------------------------- values

@@ -15,6 +15,7 @@
 // and lets the derivative's own errors (singular mass matrix) through.
 // b.rhs_evals counts the evaluations, so b also reports the cost of a run.
 #pragma once
+#include "flange/detail/inline.hpp"
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -64,7 +65,7 @@ struct checked_system {
   budget* b;
   std::shared_ptr<budget> owned{};  ///< the budget, when checked() was given a temporary one
   template <class State, class T>
-  void operator()(const State& x, State& dxdt, const T t) const {
+  FLANGE_INLINE void operator()(const State& x, State& dxdt, const T t) const {
     if (++b->rhs_evals > b->max_rhs_evals) [[unlikely]]
       detail::fail_at(detail::budget_spent(b->max_rhs_evals), x, t);
     if (!detail::finite(x)) [[unlikely]]

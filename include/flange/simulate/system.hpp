@@ -37,7 +37,7 @@ class System : public S {
   /// calls for. Works for any container with data() and size() (std::array,
   /// std::vector, Eigen vectors) and any scalar type.
   template <class State, class T>
-  void operator()(const State& x, State& dxdt, const T t) const {
+  FLANGE_INLINE void operator()(const State& x, State& dxdt, const T t) const {
     static_assert(detail::report_list<(S::topology.ok() ? S::tree.loop : -1), diagnostic::kinematic_loop,
                                       typename S::component_types>::value);
     static_assert(S::template report_cut_off<(S::topology.ok() && S::tree.loop < 0 ? S::tree.floating : -1),
@@ -45,7 +45,13 @@ class System : public S {
     static_assert(detail::report_list<(S::topology.ok() ? detail::first_uncuttable_joint<S>() : -1),
                                       diagnostic::joint_cannot_close_loop, typename S::component_types>::value);
     static_assert(report_overconstrained());
-    if constexpr (S::joints_complete) derivative(x, dxdt, t);  // else the scene has said what is missing
+    // Unless the scene has said what is missing: a small scene's derivative
+    // is compiled into the caller (dynamics/algorithm.hpp, inline_derivative),
+    // a larger one is called.
+    if constexpr (S::joints_complete) {
+      if constexpr (detail::inline_derivative<System>()) derivative_inline(x, dxdt, t);
+      else derivative(x, dxdt, t);
+    }
   }
 
  private:
@@ -61,8 +67,14 @@ class System : public S {
     return true;
   }
 
+  /// A larger scene's derivative: one function, called.
   template <class State, class T>
   void derivative(const State& x, State& dxdt, const T t) const {
+    derivative_inline(x, dxdt, t);
+  }
+  /// ẋ = f(x, t), compiled into the caller.
+  template <class State, class T>
+  FLANGE_INLINE void derivative_inline(const State& x, State& dxdt, const T t) const {
     S::require_state_size(x);
     S::require_state_size(dxdt);
     using V = std::remove_cvref_t<decltype(x[0])>;
