@@ -64,6 +64,16 @@ FLANGE_INLINE void for_links(F&& f) {
   }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
 }
 /// The same, children first.
+/// Every joint's neutral configuration (core/joint.hpp) into q[0 … n_q).
+template <class S, class T>
+void neutral_configuration(const S& scene, T* q) {
+  for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
+    using LI = link_info<S, decltype(l)::value>;
+    const auto n = scene.template component<LI::joint>().neutral();
+    for (int i = 0; i < LI::nq; ++i) q[LI::q + i] = n[i];
+  });
+}
+
 template <class S, class F>
 FLANGE_INLINE void for_links_reverse(F&& f) {
   [&]<int... L>(std::integer_sequence<int, L...>) FLANGE_INLINE_LAMBDA {

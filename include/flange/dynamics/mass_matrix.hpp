@@ -213,11 +213,7 @@ template <class S, class Model>
 void fold_mass_matrix(const S& scene, Model& model) {
   constexpr int N = S::n_v;
   std::array<double, S::n_q> q{};
-  for_links<S>([&](auto l) {
-    using LI = link_info<S, decltype(l)::value>;
-    const auto q0 = LI::joint_type::neutral();
-    for (int i = 0; i < LI::nq; ++i) q[LI::q + i] = q0[i];
-  });
+  neutral_configuration(scene, q.data());
   const auto motions = link_motions<spatial_algebra, double, true>(scene, q.data());
   Eigen::Matrix<double, N, N> M;
   std::array<double, N> scale;

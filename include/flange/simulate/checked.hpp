@@ -74,17 +74,23 @@ struct checked_system {
     // user's initial state. Later evaluations include a stepper's trial
     // stages, which may lie anywhere off the unit sphere before a step is
     // rejected.
-    if (b->rhs_evals == 1) [[unlikely]] {
-      try {
-        check_coordinates(*scene, x);
-        check_loops(*scene, x);
-      } catch (const parameter_error& e) {
-        detail::fail_at(e.what(), x, t);
-      }
-    }
+    if (b->rhs_evals == 1) [[unlikely]]
+      check_initial(x, t);
     (*scene)(x, dxdt, t);
     if (!detail::finite(dxdt)) [[unlikely]]
       detail::fail_at("the derivative is not finite", x, t);
+  }
+
+ private:
+  /// Out of line: operator() is compiled into every stage of a stepper.
+  template <class State, class T>
+  [[gnu::cold, gnu::noinline]] void check_initial(const State& x, const T t) const {
+    try {
+      check_coordinates(*scene, x);
+      check_loops(*scene, x);
+    } catch (const parameter_error& e) {
+      detail::fail_at(e.what(), x, t);
+    }
   }
 };
 

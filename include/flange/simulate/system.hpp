@@ -105,11 +105,7 @@ auto scene(Args... args) {
 template <class S>
 typename S::state_type neutral_state(const S& scene) {
   typename S::state_type x{};
-  detail::for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
-    using LI = detail::link_info<S, decltype(l)::value>;
-    const auto n = scene.template component<LI::joint>().neutral();
-    for (int i = 0; i < LI::nq; ++i) x[LI::q + i] = n[i];
-  });
+  detail::neutral_configuration(scene, x.data());
   return x;
 }
 
