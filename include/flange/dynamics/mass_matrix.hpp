@@ -18,6 +18,7 @@
 #include "flange/detail/inline.hpp"
 
 #include "flange/dynamics/kinematics.hpp"
+#include "flange/math/congruence.hpp"
 #include "flange/dynamics/newton_euler.hpp"
 
 namespace flange::detail {
@@ -76,21 +77,6 @@ FLANGE_INLINE composite_inertia<A, T> widen(const rigid_view<T, H, I>& own) {
   return c;
 }
 
-/// Eᵀ·I·E for a symmetric I, with E applied column by column (2-D rotations
-/// for a coordinate axis).
-template <class T, class E>
-FLANGE_INLINE Mat3<T> rotate_back(const E& R, const Mat3<T>& I) {
-  if constexpr (is_identity_rotation<E>) {
-    return I;
-  } else {
-    Mat3<T> A;
-    for (int k = 0; k < 3; ++k) A.col(k) = rot_t(R, to_svec(Vec3<T>(I.col(k)))).dense();  // A = Eᵀ·I
-    Mat3<T> B;
-    for (int k = 0; k < 3; ++k) B.col(k) = rot_t(R, to_svec(Vec3<T>(A.row(k).transpose()))).dense();  // (A·E)ᵀ
-    return B.transpose();
-  }
-}
-
 /// acc += the child's subtree inertia c (child coordinates) carried to the
 /// parent through the child's motion m.
 template <class A, class T, class M, class C>
@@ -101,7 +87,7 @@ FLANGE_INLINE void add_child(composite_inertia<A, T>& acc, const M& m, const C& 
   if constexpr (A::planar) {
     acc.I_o.d[A::normal] += value_of<T>(trace(c.I_o));
   } else {
-    acc.I_o += rotate_back<T>(m.E(), to_matrix<T>(c.I_o));
+    acc.I_o += rotated_back_sym<T>(m.E(), to_matrix<T>(c.I_o));
   }
   if constexpr (!is_zero_vec<decltype(m.p)>) {
     acc.h = acc.h + c.m * m.p;

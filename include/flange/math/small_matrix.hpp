@@ -6,6 +6,7 @@
 // are for the algorithms' inner steps; elsewhere Eigen's own are fine.
 #pragma once
 #include "flange/detail/inline.hpp"
+#include "flange/detail/static_for.hpp"
 #include "flange/math/types.hpp"
 
 namespace flange::small {
@@ -56,6 +57,55 @@ template <class T>
 FLANGE_INLINE void sub_outer(Mat3<T>& a, const Vec3<T>& u, const Vec3<T>& w) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) a(i, j) -= u(i) * w(j);
+}
+/// f(i, j) for each entry of the upper triangle (i ≤ j), indices as constants.
+template <class F>
+FLANGE_INLINE void for_upper(F&& f) {
+  detail::static_for<3>([&](auto i) FLANGE_INLINE_LAMBDA {
+    constexpr int I = decltype(i)::value;
+    detail::static_for<3>([&](auto j) FLANGE_INLINE_LAMBDA {
+      constexpr int J = decltype(j)::value;
+      if constexpr (J >= I) f(I, J);
+    });
+  });
+}
+/// a −= u·wᵀ where the sum of such terms keeps a symmetric (U·D⁻¹·Uᵀ):
+/// the upper triangle, mirrored.
+template <class T>
+FLANGE_INLINE void sub_outer_sym(Mat3<T>& a, const Vec3<T>& u, const Vec3<T>& w) {
+  for_upper([&](int i, int j) FLANGE_INLINE_LAMBDA { a(j, i) = a(i, j) -= u(i) * w(j); });
+}
+/// eᵀ·x·e for a symmetric x: x·e, then the upper triangle of eᵀ·(x·e), mirrored.
+template <class T>
+FLANGE_INLINE Mat3<T> rotated_back_sym(const Mat3<T>& e, const Mat3<T>& x) {
+  const Mat3<T> a = mul(x, e);
+  Mat3<T> r;
+  for_upper([&](int i, int j) FLANGE_INLINE_LAMBDA {
+    r(j, i) = r(i, j) = e(0, i) * a(0, j) + e(1, i) * a(1, j) + e(2, i) * a(2, j);
+  });
+  return r;
+}
+/// p̂·x (p̂ the cross-product matrix of p): each column of x crossed with p,
+/// six products a column instead of nine.
+template <class T>
+FLANGE_INLINE Mat3<T> skew_mul(const Vec3<T>& p, const Mat3<T>& x) {
+  Mat3<T> r;
+  for (int j = 0; j < 3; ++j) {
+    r(0, j) = p(1) * x(2, j) - p(2) * x(1, j);
+    r(1, j) = p(2) * x(0, j) - p(0) * x(2, j);
+    r(2, j) = p(0) * x(1, j) - p(1) * x(0, j);
+  }
+  return r;
+}
+/// a += b + p̂·hᵀ − g·p̂ where the result is known to be symmetric (the
+/// shift of an articulated inertia's angular block): the upper triangle,
+/// mirrored. (p̂·hᵀ)_ij = (p × h_j)_i and (g·p̂)_ij = (g_i × p)_j for rows h_j, g_i.
+template <class T>
+FLANGE_INLINE void add_shift_sym(Mat3<T>& a, const Mat3<T>& b, const Vec3<T>& p, const Mat3<T>& h, const Mat3<T>& g) {
+  for_upper([&](int i, int j) FLANGE_INLINE_LAMBDA {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+    a(j, i) = a(i, j) += b(i, j) + (p(i1) * h(j, i2) - p(i2) * h(j, i1)) - (g(i, j1) * p(j2) - g(i, j2) * p(j1));
+  });
 }
 
 }  // namespace flange::small

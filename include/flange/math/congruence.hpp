@@ -1,0 +1,50 @@
+// Eᵀ·X·E for a 3 × 3 block X and a rotation E of any of sparse.hpp's types:
+// how an inertia's blocks, kept in a child's coordinates, are turned into its
+// parent's (the composite inertias of mass_matrix.hpp, the articulated
+// inertias of articulated_body.hpp).
+//
+// A coordinate rotation is applied column by column as (c, s) pairs; a general
+// one as two written-out products (small_matrix.hpp), of which the second
+// needs only its upper triangle when X is symmetric (Θ, M, a rotational
+// inertia): 45 products instead of 54.
+#pragma once
+#include <type_traits>
+
+#include "flange/detail/inline.hpp"
+#include "flange/detail/static_for.hpp"
+#include "flange/math/small_matrix.hpp"
+#include "flange/math/sparse.hpp"
+
+namespace flange {
+
+/// Eᵀ·X·E for any 3 × 3 X.
+template <class T, class E>
+FLANGE_INLINE Mat3<T> rotated_back(const E& R, const Mat3<T>& X) {
+  if constexpr (is_identity_rotation<E>) {
+    return X;
+  } else if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) {
+    return small::mul(small::mul_tn(R, X), R);
+  } else {
+    Mat3<T> A, B;  // A = Eᵀ·X column by column, then B = (A·E)ᵀ = Eᵀ·Aᵀ column by column
+    detail::static_for<3>([&](auto k) FLANGE_INLINE_LAMBDA {
+      constexpr int K = decltype(k)::value;
+      const auto c = rot_t(R, to_svec(Vec3<T>(X(0, K), X(1, K), X(2, K))));
+      detail::static_for<3>([&](auto i) FLANGE_INLINE_LAMBDA { A(decltype(i)::value, K) = c.template get<decltype(i)::value>(); });
+    });
+    detail::static_for<3>([&](auto k) FLANGE_INLINE_LAMBDA {
+      constexpr int K = decltype(k)::value;
+      const auto c = rot_t(R, to_svec(Vec3<T>(A(K, 0), A(K, 1), A(K, 2))));
+      detail::static_for<3>([&](auto i) FLANGE_INLINE_LAMBDA { B(K, decltype(i)::value) = c.template get<decltype(i)::value>(); });
+    });
+    return B;
+  }
+}
+
+/// Eᵀ·X·E for a symmetric X (the result is symmetric).
+template <class T, class E>
+FLANGE_INLINE Mat3<T> rotated_back_sym(const E& R, const Mat3<T>& X) {
+  if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) return small::rotated_back_sym(R, X);
+  else return rotated_back<T>(R, X);
+}
+
+}  // namespace flange
