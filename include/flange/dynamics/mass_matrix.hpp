@@ -87,7 +87,7 @@ FLANGE_INLINE void add_child(composite_inertia<A, T>& acc, const M& m, const C& 
   if constexpr (A::planar) {
     acc.I_o.d[A::normal] += value_of<T>(trace(c.I_o));
   } else {
-    acc.I_o += rotated_back_sym<T>(m.E(), to_matrix<T>(c.I_o));
+    acc.I_o += rotated_back_sym_by_columns<T>(m.E(), to_matrix<T>(c.I_o));
   }
   if constexpr (!is_zero_vec<decltype(m.p)>) {
     acc.h = acc.h + c.m * m.p;

@@ -6,7 +6,8 @@
 // A coordinate rotation is applied column by column as (c, s) pairs; a general
 // one as two written-out products (small_matrix.hpp), of which the second
 // needs only its upper triangle when X is symmetric (Θ, M, a rotational
-// inertia): 45 products instead of 54.
+// inertia): 45 products instead of 54; or, where that measures faster (the
+// mass matrix), as rotations of its columns and rows.
 #pragma once
 #include <type_traits>
 
@@ -45,6 +46,25 @@ template <class T, class E>
 FLANGE_INLINE Mat3<T> rotated_back_sym(const E& R, const Mat3<T>& X) {
   if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) return small::rotated_back_sym(R, X);
   else return rotated_back<T>(R, X);
+}
+
+/// The same for a general E applied to X's columns and then to the rows of
+/// the result (54 products, no symmetry used). The products are the same as
+/// rotated_back_sym's; GCC schedules the two differently, and which is faster
+/// depends on the pass around them: this one inside the mass matrix's pass
+/// (4-link spatial chain, Newton–Euler: 250 against 300 ns), the other inside
+/// the articulated body (8 links: 0.89 against 1.36 µs).
+template <class T, class E>
+FLANGE_INLINE Mat3<T> rotated_back_sym_by_columns(const E& R, const Mat3<T>& X) {
+  if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) {
+    Mat3<T> A;
+    for (int k = 0; k < 3; ++k) A.col(k) = rot_t(R, to_svec(Vec3<T>(X.col(k)))).dense();
+    Mat3<T> B;
+    for (int k = 0; k < 3; ++k) B.col(k) = rot_t(R, to_svec(Vec3<T>(A.row(k).transpose()))).dense();
+    return B.transpose();
+  } else {
+    return rotated_back<T>(R, X);
+  }
 }
 
 }  // namespace flange
