@@ -69,20 +69,6 @@ FLANGE_INLINE auto from_dense(const dvec<A, T>& x) {
   return motion_pair{to_svec<A::angular_mask>(ang), to_svec<A::linear_mask>(lin)};
 }
 
-/// The motion transform X of a link (parent coordinates → child): for a
-/// parent motion (α, a), (E·α, E·(a + α × p)); built column by column.
-template <class A, class T, class M>
-FLANGE_INLINE dmat<A, T> motion_transform(const M& m) {
-  dmat<A, T> X;
-  for (int i = 0; i < algebra_size<A>; ++i) {
-    dvec<A, T> e = dvec<A, T>::Zero();
-    e(i) = T(1);
-    const auto b = from_dense<A, T>(e);
-    const dvec<A, T> c = to_dense<A, T>(rot(m.E(), b.ang), rot(m.E(), b.lin + cross(b.ang, m.p)));
-    for (int k = 0; k < algebra_size<A>; ++k) X(k, i) = c(k);
-  }
-  return X;
-}
 /// A rigid inertia (m, h, I) as a dense matrix of the algebra: (α, a) ↦ (I·α + h × a, m·a + α × h).
 template <class A, class T, class R>
 FLANGE_INLINE dmat<A, T> inertia_matrix(const R& c) {
@@ -139,7 +125,8 @@ FLANGE_INLINE aba_force<A, T> as_force(const N& n, const F& f) {
 /// changes them (the rotation, Θ's shift, the subtraction of U·D⁻¹·Uᵀ)
 /// computes their upper triangle and mirrors it: 16-link spatial chain,
 /// 1693 → 1560 instructions a link. In a plane it is a symmetric 3 × 3 matrix
-/// over (α_K, a_i, a_j), carried by the link's 3 × 3 motion transform.
+/// over (α_K, a_i, a_j), carried by the link's motion transform in blocks
+/// (add_from_child below).
 template <class A, class T>
 struct articulated_inertia;
 
@@ -212,14 +199,47 @@ struct articulated_inertia<planar_algebra<K>, T> {
     for (std::size_t k = 0; k < N; ++k)
       small::sub_outer_sym(I, to_dense<A, T>(U[k].n, U[k].f), to_dense<A, T>(W[k].n, W[k].f));
   }
+  /// Xᵀ·I·X for the link's motion transform X = [[1, 0], [E₂·q, E₂]]
+  /// (E₂ the rotation in the plane, q = e_K × p), in blocks: with
+  /// h' = E₂ᵀ·h and M' = E₂ᵀ·M·E₂ (M the 2 × 2 block over a_i, a_j),
+  ///   θ + 2·h'·q + qᵀ·M'·q,   h' + M'·q,   M'.
   template <class Mo>
   FLANGE_INLINE void add_from_child(const articulated_inertia& c, const Mo& m) {
-    small::add_to(I, small::rotated_back_sym(motion_transform<A, T>(m), c.I));
+    constexpr int i = (K + 1) % 3, j = (K + 2) % 3;
+    const auto pair = [](const T& x, const T& y) FLANGE_INLINE_LAMBDA {
+      svec<T, A::linear_mask> v;
+      v.template at<i>() = x;
+      v.template at<j>() = y;
+      return v;
+    };
+    const auto h = rot_t(m.E(), pair(c.I(1, 0), c.I(2, 0)));
+    const auto a0 = rot_t(m.E(), pair(c.I(1, 1), c.I(2, 1))), a1 = rot_t(m.E(), pair(c.I(1, 2), c.I(2, 2)));
+    const auto r0 = rot_t(m.E(), pair(a0.template get<i>(), a1.template get<i>()));
+    const T m00 = r0.template get<i>(), m01 = r0.template get<j>();
+    const T m11 = rot_t(m.E(), pair(a0.template get<j>(), a1.template get<j>())).template get<j>();
+    T th = c.I(0, 0), hi = h.template get<i>(), hj = h.template get<j>();
+    if constexpr (!is_zero_vec<decltype(m.p)>) {
+      const T qi = -m.p.template get<j>(), qj = m.p.template get<i>();
+      const T mqi = m00 * qi + m01 * qj, mqj = m01 * qi + m11 * qj;
+      th += T(2) * (hi * qi + hj * qj) + (qi * mqi + qj * mqj);
+      hi += mqi;
+      hj += mqj;
+    }
+    I(0, 0) += th;
+    I(1, 0) = I(0, 1) += hi;
+    I(2, 0) = I(0, 2) += hj;
+    I(1, 1) += m00;
+    I(2, 1) = I(1, 2) += m01;
+    I(2, 2) += m11;
   }
 };
 
 template <class A, class T, int NV>
 struct aba_link {
+  // Not zeroed: every entry is written before it is read (the workspace is a
+  // tuple, which would otherwise value-initialise it at every evaluation, and
+  // the tests' NaN-filled stacks would not see a read before a write).
+  aba_link() {}
   svec<T, A::angular_mask> w;  ///< ω
   articulated_inertia<A, T> IA;
   aba_force<A, T> pA;

@@ -121,10 +121,10 @@ inline void ldlt_backward_half(const MM& M, const std::array<T, N>& sqrt_inv_d, 
 template <int N, class T, class MM>
 [[gnu::always_inline]] inline pivot_report<T> solve_spd(MM& M, const T* r, T* a, const T* scale) {
   ldlt_pivots<N, T> f;
-  if (const auto p = ldlt_factor<N>(M, f, scale); p.index >= 0) [[unlikely]]
-    return p;
-  ldlt_solve<N>(M, f, r, a);
-  return {};
+  const auto p = ldlt_factor<N>(M, f, scale);
+  if (p.index < 0) [[likely]]
+    ldlt_solve<N>(M, f, r, a);
+  return p;
 }
 
 }  // namespace flange::detail
