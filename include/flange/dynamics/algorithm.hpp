@@ -16,9 +16,12 @@
 //
 // with one set of constants for the spatial algebra and one for the planar,
 // and b and c larger for a link turned by a general rotation than by a
-// typed one. The crossover this gives on chains: 10 links with run-time axes,
-// 12 with coordinate axes, 22 in a plane; the floating legged robot (18
-// rates, branches 3 deep) stays with Newton–Euler.
+// typed one. The crossover this gives on chains: 7 links with run-time axes,
+// 12 with coordinate axes, 13 in a plane; the floating legged robot (18
+// rates, branches 3 deep) stays with Newton–Euler. (Measured with
+// tools/chain_counts.sh; beyond about 8 links both algorithms cost more per
+// link than the model says, as their unrolled code outgrows the instruction
+// cache: docs/performance.md.)
 // A scene with loops always takes the first: its constraint solve needs M.
 #pragma once
 #include "flange/detail/inline.hpp"
@@ -42,8 +45,8 @@ struct algorithm_costs {
 };
 template <class A>
 constexpr algorithm_costs costs_for() {
-  if constexpr (A::planar) return {12.8, 3.9, 3.9, 52, 52, 22};
-  else return {17.7, 31.7, 20, 150, 125, 22};
+  if constexpr (A::planar) return {12.8, 3.9, 3.9, 35, 35, 22};
+  else return {17.7, 31.7, 20, 110, 125, 22};
 }
 
 /// Whether link L turns its parent's coordinates by a general 3 × 3 rotation
