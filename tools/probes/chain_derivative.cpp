@@ -1,0 +1,71 @@
+// A probe for tools/chain_counts.sh: the N-link chain of models/chain.hpp with
+// the scale benchmark's random parameters and state (benchmarks/scale/scale.hpp),
+// its derivative called K times by one algorithm. Not part of the CMake build.
+//
+//   chain_derivative K ALGORITHM      ALGORITHM: default | articulated | other
+//
+// Compile-time choices: -DPROBE_N=<links> and -DPROBE_AXES=runtime|typed|planar.
+#include <flange/dynamics/other_algorithm.hpp>
+#include <flange/flange.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+
+#ifndef PROBE_N
+#define PROBE_N 16
+#endif
+#define PROBE_runtime 0
+#define PROBE_typed 1
+#define PROBE_planar 2
+#define PROBE_KIND_(a) PROBE_##a
+#define PROBE_KIND(a) PROBE_KIND_(a)
+#ifndef PROBE_AXES
+#define PROBE_AXES runtime
+#endif
+
+template <int I>
+struct probe_axes {
+#if PROBE_KIND(PROBE_AXES) == PROBE_typed
+  using type = flange::axis::coordinate<I % 3>;
+#elif PROBE_KIND(PROBE_AXES) == PROBE_planar
+  using type = flange::axis::z;
+#else
+  using type = flange::axis::any;
+#endif
+};
+
+int main(int argc, char** argv) {
+  using namespace flange;
+  constexpr int N = PROBE_N;
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(0.2, 1.0), s(-1, 1);
+  models::chain_params<N> p;
+  for (int i = 0; i < N; ++i) {
+    p.axis[i] = Vec3d(s(rng), s(rng), 1).normalized();
+    p.d[i] = Vec3d(u(rng), 0.1 * s(rng), 0.1 * s(rng));
+    p.m[i] = u(rng);
+    p.J[i] = Vec3d(0.05, 0.06, 0.07).asDiagonal();
+  }
+  const auto c = models::chain<N, probe_axes>(p);
+  using S = std::remove_cvref_t<decltype(c)>;
+  typename S::state_type x, dx{};
+  for (auto& v : x) v = s(rng);
+  const long k = argc > 1 ? std::atol(argv[1]) : 1000;
+  const char* alg = argc > 2 ? argv[2] : "default";
+  const double* q = x.data();
+  const double* v = x.data() + S::n_q;
+  double* vd = dx.data() + S::n_q;
+  double sum = 0;
+  for (long i = 0; i < k; ++i) {
+    asm volatile("" : : "r"(x.data()) : "memory");
+    if (!std::strcmp(alg, "articulated")) accelerations_articulated_body(c, 0.0, q, v, vd);
+    else if (!std::strcmp(alg, "other")) accelerations_other(c, 0.0, q, v, vd);
+    else c(x, dx, 0.0);
+    asm volatile("" : : "r"(dx.data()) : "memory");
+    sum += dx[S::n_q];
+  }
+  std::printf("%.17g %s\n", sum,
+              algorithm_for<S>() == forward_algorithm::articulated_body ? "articulated" : "newton_euler_mass_matrix");
+}
