@@ -122,14 +122,8 @@ void jacobian_eval(benchmark::State& st, const Scene& sc, std::array<double, N> 
 template <int N, template <int> class Axes, bool ABA>
 void chain_derivative(benchmark::State& st) {
   std::mt19937 rng(1);
-  std::uniform_real_distribution<double> u(0.2, 1.0), s(-1, 1);
-  models::chain_params<N> p;
-  for (int i = 0; i < N; ++i) {
-    p.axis[i] = Vec3d(s(rng), s(rng), 1).normalized();
-    p.d[i] = Vec3d(u(rng), 0.1 * s(rng), 0.1 * s(rng));
-    p.m[i] = u(rng);
-    p.J[i] = Vec3d(0.05, 0.06, 0.07).asDiagonal();
-  }
+  std::uniform_real_distribution<double> s(-1, 1);
+  const auto p = models::random_chain_params<N>(rng);
   const auto c = models::chain<N, Axes>(p);
   std::array<double, 2 * N> x, dx;
   for (auto& v : x) v = s(rng);

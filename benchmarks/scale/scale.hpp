@@ -128,18 +128,14 @@ template <int N, template <int> class Axes>
 void chain_case(const std::string& name) {
   using namespace flange;
   std::mt19937 rng(1);
-  std::uniform_real_distribution<double> u(0.2, 1.0), s(-1, 1);
-  models::chain_params<N> p;
+  std::uniform_real_distribution<double> s(-1, 1);
+  const auto p = models::random_chain_params<N>(rng);
   std::vector<std::array<double, 3>> axis(N), d(N), J(N);
   std::vector<double> m(N);
   for (int i = 0; i < N; ++i) {
-    p.axis[i] = Vec3d(s(rng), s(rng), 1).normalized();
-    p.d[i] = Vec3d(u(rng), 0.1 * s(rng), 0.1 * s(rng));
-    p.m[i] = u(rng);
-    p.J[i] = Vec3d(0.05, 0.06, 0.07).asDiagonal();
     d[i] = {p.d[i](0), p.d[i](1), p.d[i](2)};
     m[i] = p.m[i];
-    J[i] = {0.05, 0.06, 0.07};
+    J[i] = {p.J[i](0, 0), p.J[i](1, 1), p.J[i](2, 2)};
   }
   [&]<int... I>(std::integer_sequence<int, I...>) {
     ((axis[I] = [&] {

@@ -40,14 +40,8 @@ int main(int argc, char** argv) {
   using namespace flange;
   constexpr int N = PROBE_N;
   std::mt19937 rng(1);
-  std::uniform_real_distribution<double> u(0.2, 1.0), s(-1, 1);
-  models::chain_params<N> p;
-  for (int i = 0; i < N; ++i) {
-    p.axis[i] = Vec3d(s(rng), s(rng), 1).normalized();
-    p.d[i] = Vec3d(u(rng), 0.1 * s(rng), 0.1 * s(rng));
-    p.m[i] = u(rng);
-    p.J[i] = Vec3d(0.05, 0.06, 0.07).asDiagonal();
-  }
+  std::uniform_real_distribution<double> s(-1, 1);
+  const auto p = models::random_chain_params<N>(rng);
   const auto c = models::chain<N, probe_axes>(p);
   using S = std::remove_cvref_t<decltype(c)>;
   typename S::state_type x, dx{};

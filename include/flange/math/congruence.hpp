@@ -44,7 +44,7 @@ FLANGE_INLINE Mat3<T> rotated_back(const E& R, const Mat3<T>& X) {
 /// Eᵀ·X·E for a symmetric X (the result is symmetric).
 template <class T, class E>
 FLANGE_INLINE Mat3<T> rotated_back_sym(const E& R, const Mat3<T>& X) {
-  if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) return small::rotated_back_sym(R, X);
+  if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) return small::congruence_sym(R, X);
   else return rotated_back<T>(R, X);
 }
 

@@ -77,7 +77,7 @@ FLANGE_INLINE void sub_outer_sym(Mat3<T>& a, const Vec3<T>& u, const Vec3<T>& w)
 }
 /// eᵀ·x·e for a symmetric x: x·e, then the upper triangle of eᵀ·(x·e), mirrored.
 template <class T>
-FLANGE_INLINE Mat3<T> rotated_back_sym(const Mat3<T>& e, const Mat3<T>& x) {
+FLANGE_INLINE Mat3<T> congruence_sym(const Mat3<T>& e, const Mat3<T>& x) {
   const Mat3<T> a = mul(x, e);
   Mat3<T> r;
   for_upper([&](int i, int j) FLANGE_INLINE_LAMBDA {

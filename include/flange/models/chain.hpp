@@ -8,6 +8,7 @@
 // Inertia the bodies' (inertia_kind::point makes them point masses).
 #pragma once
 #include <array>
+#include <random>
 #include <utility>
 
 #include "flange/components/body.hpp"
@@ -27,6 +28,23 @@ struct chain_params {
   Vec3d g = Vec3d(0, -9.81, 0);
   double stiffness = 0, damping = 0;  ///< every joint's c and d, with axis_law::spring_damper
 };
+
+/// Parameters of a random chain, drawn from rng: unit axes tilted up to 45°
+/// from z, links 0.2–1 long with offsets up to 0.1 across, masses 0.2–1 and
+/// one inertia for all. The benchmarks and probes draw their chains (and then
+/// their states, from the same rng) here, so that they measure one model.
+template <int N, class Rng>
+chain_params<N> random_chain_params(Rng& rng) {
+  std::uniform_real_distribution<double> u(0.2, 1.0), s(-1, 1);
+  chain_params<N> p;
+  for (int i = 0; i < N; ++i) {
+    p.axis[i] = Vec3d(s(rng), s(rng), 1).normalized();
+    p.d[i] = Vec3d(u(rng), 0.1 * s(rng), 0.1 * s(rng));
+    p.m[i] = u(rng);
+    p.J[i] = Vec3d(0.05, 0.06, 0.07).asDiagonal();
+  }
+  return p;
+}
 
 /// A chain of N links with joint axis type Axis<I>::type for link I.
 template <int N, template <int> class Axis, class Law = axis_law::none, class Gravity = gravity_kind::uniform,
