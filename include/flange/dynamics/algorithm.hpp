@@ -49,15 +49,6 @@ constexpr algorithm_costs costs_for() {
   else return {17.7, 31.7, 20, 110, 125, 22};
 }
 
-/// Whether link L turns its parent's coordinates by a general 3 × 3 rotation
-/// (a run-time axis, a free orientation) rather than a typed one.
-template <class S, int L>
-constexpr bool general_rotation() {
-  using M = decltype(make_link_motion<spatial_algebra, double, L, true>(std::declval<const S&>(),
-                                                                         static_cast<const double*>(nullptr)));
-  return std::is_same_v<std::remove_cvref_t<decltype(std::declval<const M&>().E())>, Mat3<double>>;
-}
-
 /// The two estimates for scene S, ns: {Newton–Euler + mass matrix, articulated body}.
 template <class S>
 constexpr std::pair<double, double> algorithm_estimates() {

@@ -17,13 +17,19 @@
 //
 // with X the link's motion transform (rotation E, offset p) and a₀ = (0, −g).
 // I_A is kept as 3 × 3 blocks in space and as a 3 × 3 matrix in a plane
-// (articulated_inertia below); above 16 links each link's step is a function
+// (articulated_inertia below). The up and down steps are written once, as
+// functions of a link's kinds (its joint's motion, its workspace), not of the
+// link: a small scene has them unrolled into the pass, a large one calls one
+// shared copy per kind, which stays in the instruction cache
+// (aba_shared_steps); above 16 links each link's remaining code is a function
 // of its own (links.hpp, for_links_split).
 #pragma once
 #include "flange/scene/named_state.hpp"
 #include "flange/detail/inline.hpp"
 #include <array>
+#include <cstddef>
 #include <tuple>
+#include <type_traits>
 
 #include "flange/dynamics/forward_dynamics.hpp"
 #include "flange/math/congruence.hpp"
@@ -256,10 +262,36 @@ struct aba_workspace<A, S, T, std::integer_sequence<int, L...>> {
   using type = std::tuple<aba_link<A, T, link_info<S, L + 1>::nv>...>;
 };
 
+/// The articulated body's instructions per link when its steps are unrolled
+/// into one function (g++ 12 -O3, tools/chain_counts.sh): about 480 in a
+/// plane, 1090 in space for a link turned by a typed rotation, 1460 by a
+/// general one.
+template <class A, class S>
+constexpr int aba_unrolled_instructions() {
+  return []<int... L>(std::integer_sequence<int, L...>) {
+    return (0 + ... + (A::planar ? 480 : general_rotation<S, L + 1>() ? 1460 : 1090));
+  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+}
+/// Whether the up and down steps run as shared functions, one per kind of
+/// link (aba_up_shared), rather than unrolled into the pass: when the
+/// unrolled code would pass about 13,000 instructions. Beyond that it
+/// outgrows the instruction cache, and the time per link rose by half while
+/// the instructions per link did not (docs/performance.md); below it the
+/// calls only cost. This puts the switch at 9 links with run-time axes, 12
+/// with typed ones and 28 in a plane, where the measured crossovers are
+/// (8 | 10, 10 | 12, 32 | 48 links: unrolled faster | shared faster).
+inline constexpr int aba_shared_steps_above = 13000;
+template <class A, class S>
+constexpr bool aba_shared_steps() {
+  return aba_unrolled_instructions<A, S>() > aba_shared_steps_above;
+}
+
 /// D⁻¹ for D = Sᵀ·I_A·S, with the relative pivot test of ldlt.hpp against the
-/// trace of the articulated inertia's blocks each column moves in.
-template <class S, int L, class A, class T, class Mo, int NV>
-FLANGE_INLINE void aba_invert_d(aba_link<A, T, NV>& w, const Mo& m, const T& t, const T* q, const T* v) {
+/// trace of the articulated inertia's blocks each column moves in. Returns
+/// the first failing pivot (index among the joint's rates), for the caller to
+/// report with the joint's name.
+template <class A, class T, class Mo, int NV>
+FLANGE_INLINE pivot_report<T> aba_invert_d(aba_link<A, T, NV>& w, const Mo& m) {
   Eigen::Matrix<T, NV, NV> D;
   std::array<T, NV> scale;
   [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
@@ -273,25 +305,117 @@ FLANGE_INLINE void aba_invert_d(aba_link<A, T, NV>& w, const Mo& m, const T& t, 
         ...);
   }(std::make_integer_sequence<int, NV>{});
   ldlt_pivots<NV, T> f;
-  // A failing pivot is a singular mass matrix at this joint's rates (D is
-  // the joint's share of it once its subtree is accounted for): reported as
-  // the mass-matrix path reports it, a non-finite state included.
   if (const auto p = ldlt_factor<NV>(D, f, scale.data()); p.index >= 0) [[unlikely]]
-    singular_mass_matrix<S>(pivot_report<T>{link_info<S, L>::v + p.index, p.d, p.scale}, t, q, v);
+    return p;
   for (int k = 0; k < NV; ++k) {
     std::array<T, NV> e{}, col{};
     e[k] = T(1);
     ldlt_solve<NV>(D, f, e.data(), col.data());
     for (int i = 0; i < NV; ++i) w.Dinv(i, k) = col[i];
   }
+  return {};
+}
+
+/// One link's step up the tree: U = I_A·S, D⁻¹, u = τ − Sᵀ·p_A, and, with a
+/// parent p (not nullptr), the parent's I_A += Xᵀ·(I_A − U·D⁻¹·Uᵀ)·X and
+/// p_A += Xᵀ·(p_A + I_a·c + U·D⁻¹·u). Its types are the link's kinds, not
+/// the link: links of one kind share one copy of it in a large scene
+/// (aba_shared_steps). Returns D⁻¹'s failing pivot, if any.
+template <class A, class T, bool JointForces, class W, class Mo, class P>
+FLANGE_INLINE pivot_report<T> aba_up(W& w, const Mo& m, P* p, const T* tau) {
+  constexpr int nv = std::tuple_size_v<decltype(w.u)>;
+  [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
+    ((w.U[K] = w.IA.times(m.template col<K>().ang, m.template col<K>().lin)), ...);
+  }(std::make_integer_sequence<int, nv>{});
+  if (const auto piv = aba_invert_d(w, m); piv.index >= 0) [[unlikely]]
+    return piv;
+  const auto sp = m.project(w.pA.n, w.pA.f);
+  for (int k = 0; k < nv; ++k) {
+    if constexpr (JointForces) w.u[k] = tau[k] - sp[k];
+    else w.u[k] = -sp[k];
+  }
+  if constexpr (!std::is_same_v<P, std::nullptr_t>) {
+    for (int k = 0; k < nv; ++k) {
+      auto n = w.Dinv(0, k) * w.U[0].n;
+      auto f = w.Dinv(0, k) * w.U[0].f;
+      for (int i = 1; i < nv; ++i) {
+        n = n + w.Dinv(i, k) * w.U[i].n;
+        f = f + w.Dinv(i, k) * w.U[i].f;
+      }
+      w.UDinv[k] = {n, f};
+    }
+    // I_a = I_A − U·D⁻¹·Uᵀ; p_a = p_A + I_a·c + U·D⁻¹·u
+    w.IA.subtract(w.UDinv, w.U);
+    const auto Iac = w.IA.times(w.c.ang, w.c.lin);
+    auto pn = w.pA.n + Iac.n;
+    auto pf = w.pA.f + Iac.f;
+    for (int k = 0; k < nv; ++k) {
+      pn = pn + w.u[k] * w.UDinv[k].n;
+      pf = pf + w.u[k] * w.UDinv[k].f;
+    }
+    p->IA.add_from_child(w.IA, m);
+    const auto up = carry_up(m, force_pair{pn, pf});
+    p->pA = as_force<A, T>(p->pA.n + up.n, p->pA.f + up.f);
+  }
+  return {};
+}
+
+/// One link's step down the tree from its parent's acceleration aP:
+/// a' = X·a_P + c, v̇ = D⁻¹·(u − Uᵀ·a') into vdot, and, for a link with
+/// children, a = a' + S·v̇. Shared between links of one kind like aba_up.
+template <class A, class T, bool HasChildren, class W, class Mo, class AP>
+FLANGE_INLINE void aba_down(W& w, const Mo& m, const AP& aP, T* vdot) {
+  constexpr int nv = std::tuple_size_v<decltype(w.u)>;
+  const auto ap =
+      as_motion<A, T>(rot(m.E(), aP.ang) + w.c.ang, rot(m.E(), aP.lin + cross(aP.ang, m.p)) + w.c.lin);
+  std::array<T, nv> r;
+  for (int k = 0; k < nv; ++k)
+    r[k] = w.u[k] - (value_of<T>(dot(w.U[k].n, ap.ang)) + value_of<T>(dot(w.U[k].f, ap.lin)));
+  std::array<T, nv> acc;
+  for (int i = 0; i < nv; ++i) {
+    acc[i] = w.Dinv(i, 0) * r[0];
+    for (int k = 1; k < nv; ++k) acc[i] += w.Dinv(i, k) * r[k];
+    vdot[i] = acc[i];
+  }
+  if constexpr (HasChildren) {
+    auto an = ap.ang;
+    auto al = ap.lin;
+    [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
+      ((an = fit<A::angular_mask>(an + acc[K] * m.template col<K>().ang),
+        al = fit<A::linear_mask>(al + acc[K] * m.template col<K>().lin)),
+       ...);
+    }(std::make_integer_sequence<int, nv>{});
+    w.a = {an, al};
+  }
+}
+
+/// The same steps as functions of their own, one per combination of kinds:
+/// a large scene's links then run the same instructions, which stay in the
+/// instruction cache, where one unrolled copy per link did not
+/// (aba_shared_steps).
+template <class A, class T, bool JointForces, class W, class Mo, class P>
+[[gnu::noinline]] pivot_report<T> aba_up_shared(W& w, const Mo& m, P* p, const T* tau) {
+  return aba_up<A, T, JointForces>(w, m, p, tau);
+}
+template <class A, class T, bool HasChildren, class W, class Mo, class AP>
+[[gnu::noinline]] void aba_down_shared(W& w, const Mo& m, const AP& aP, T* vdot) {
+  aba_down<A, T, HasChildren>(w, m, aP, vdot);
 }
 
 }  // namespace detail
 
+/// How the articulated body's per-link steps are compiled: unrolled into one
+/// function, as functions shared by links of one kind, or as
+/// detail::aba_shared_steps decides from the scene's size. The tests run both
+/// on one scene; users keep the default.
+enum class aba_steps { automatic, unrolled, shared };
+
 /// v̇ at (t, q, v) by the articulated-body algorithm, in algebra A.
-template <class A, class S, class T>
+template <class A, aba_steps Steps = aba_steps::automatic, class S, class T>
 void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, const T* v, T* vdot) {
   using namespace detail;
+  constexpr bool shared =
+      Steps == aba_steps::shared || (Steps == aba_steps::automatic && aba_shared_steps<A, S>());
   const auto xs = state_view<S>(q, v);
   typename aba_workspace<A, S, T>::type ws;
   const auto motions = algebra_motions<A>(scene, q);
@@ -325,57 +449,37 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
     constexpr int nv = LI::nv;
     auto& w = std::get<L - 1>(ws);
     const auto& m = std::get<L - 1>(motions);
-    [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
-      ((w.U[K] = w.IA.times(m.template col<K>().ang, m.template col<K>().lin)), ...);
-    }(std::make_integer_sequence<int, nv>{});
-    aba_invert_d<S, L>(w, m, t, q, v);
-    const auto sp = m.project(w.pA.n, w.pA.f);
-    for (int k = 0; k < nv; ++k) {
-      if constexpr (has_joint_forces<S>()) w.u[k] = tau[LI::v + k] - sp[k];
-      else w.u[k] = -sp[k];
-    }
-    if constexpr (LI::parent != 0 && nv == algebra_size<A>) {
-      // A joint that frees every direction (FreeMotion; a Planar joint in
-      // planar algebra) passes its parent no articulated inertia, and of
-      // the force only its own generalized force, S⁻ᵀ·τ. The general
-      // formula below reaches both only through cancellation (IA − U·D⁻¹·Uᵀ
-      // and pA − U·D⁻¹·Sᵀ·pA), whose round-off is that of the heavy child
-      // and can swamp a light parent (tests/hard_mass_ratio_test.cpp:
-      // masses from 1e-6 to 1e6 made a parent's articulated inertia negative).
-      if constexpr (has_generalized_force<typename LI::joint_type>) {
-        Eigen::Matrix<T, nv, nv> St;
-        [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
-          ((St.row(K) = to_dense<A, T>(m.template col<K>().ang, m.template col<K>().lin).transpose()), ...);
-        }(std::make_integer_sequence<int, nv>{});
-        Eigen::Matrix<T, nv, 1> tj;
-        for (int k = 0; k < nv; ++k) tj(k) = tau[LI::v + k];
-        const auto pa = from_dense<A, T>(dvec<A, T>(St.partialPivLu().solve(tj)));
-        auto& p = std::get<LI::parent - 1>(ws);
-        const auto up = carry_up(m, force_pair{pa.ang, pa.lin});
-        p.pA = as_force<A, T>(p.pA.n + up.n, p.pA.f + up.f);
-      }
-    } else if constexpr (LI::parent != 0) {
-      for (int k = 0; k < nv; ++k) {
-        auto n = w.Dinv(0, k) * w.U[0].n;
-        auto f = w.Dinv(0, k) * w.U[0].f;
-        for (int i = 1; i < nv; ++i) {
-          n = n + w.Dinv(i, k) * w.U[i].n;
-          f = f + w.Dinv(i, k) * w.U[i].f;
-        }
-        w.UDinv[k] = {n, f};
-      }
-      // I_a = I_A − U·D⁻¹·Uᵀ; p_a = p_A + I_a·c + U·D⁻¹·u
-      w.IA.subtract(w.UDinv, w.U);
-      const auto Iac = w.IA.times(w.c.ang, w.c.lin);
-      auto pn = w.pA.n + Iac.n;
-      auto pf = w.pA.f + Iac.f;
-      for (int k = 0; k < nv; ++k) {
-        pn = pn + w.u[k] * w.UDinv[k].n;
-        pf = pf + w.u[k] * w.UDinv[k].f;
-      }
+    // A joint that frees every direction (FreeMotion; a Planar joint in
+    // planar algebra) passes its parent no articulated inertia, and of the
+    // force only its own generalized force, S⁻ᵀ·τ. The general formula
+    // reaches both only through cancellation (IA − U·D⁻¹·Uᵀ and
+    // pA − U·D⁻¹·Sᵀ·pA), whose round-off is that of the heavy child and can
+    // swamp a light parent (tests/hard_mass_ratio_test.cpp: masses from 1e-6
+    // to 1e6 made a parent's articulated inertia negative).
+    constexpr bool frees_all = LI::parent != 0 && nv == algebra_size<A>;
+    auto* parent = [&]() FLANGE_INLINE_LAMBDA {
+      if constexpr (LI::parent != 0 && !frees_all) return &std::get<LI::parent - 1>(ws);
+      else return static_cast<std::nullptr_t*>(nullptr);
+    }();
+    constexpr bool jf = has_joint_forces<S>();
+    pivot_report<T> piv;
+    if constexpr (shared) piv = aba_up_shared<A, T, jf>(w, m, parent, tau.data() + LI::v);
+    else piv = aba_up<A, T, jf>(w, m, parent, tau.data() + LI::v);
+    // A failing pivot is a singular mass matrix at this joint's rates (D is
+    // the joint's share of it once its subtree is accounted for): reported
+    // as the mass-matrix path reports it, a non-finite state included.
+    if (piv.index >= 0) [[unlikely]]
+      singular_mass_matrix<S>(pivot_report<T>{LI::v + piv.index, piv.d, piv.scale}, t, q, v);
+    if constexpr (frees_all && has_generalized_force<typename LI::joint_type>) {
+      Eigen::Matrix<T, nv, nv> St;
+      [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
+        ((St.row(K) = to_dense<A, T>(m.template col<K>().ang, m.template col<K>().lin).transpose()), ...);
+      }(std::make_integer_sequence<int, nv>{});
+      Eigen::Matrix<T, nv, 1> tj;
+      for (int k = 0; k < nv; ++k) tj(k) = tau[LI::v + k];
+      const auto pa = from_dense<A, T>(dvec<A, T>(St.partialPivLu().solve(tj)));
       auto& p = std::get<LI::parent - 1>(ws);
-      p.IA.add_from_child(w.IA, m);
-      const auto up = carry_up(m, force_pair{pn, pf});
+      const auto up = carry_up(m, force_pair{pa.ang, pa.lin});
       p.pA = as_force<A, T>(p.pA.n + up.n, p.pA.f + up.f);
     }
   });
@@ -384,41 +488,22 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
   for_links_split<S>([&](auto l) FLANGE_INLINE_LAMBDA {
     constexpr int L = decltype(l)::value;
     using LI = link_info<S, L>;
-    constexpr int nv = LI::nv;
     auto& w = std::get<L - 1>(ws);
     const auto& m = std::get<L - 1>(motions);
-    const auto ap = [&](const auto& aP) FLANGE_INLINE_LAMBDA {
-      return as_motion<A, T>(rot(m.E(), aP.ang) + w.c.ang, rot(m.E(), aP.lin + cross(aP.ang, m.p)) + w.c.lin);
-    }([&]() FLANGE_INLINE_LAMBDA {
-      if constexpr (LI::parent != 0) return std::get<LI::parent - 1>(ws).a;
-      else return motion_pair{base.wd, base.a};
-    }());
-    std::array<T, nv> r;
-    for (int k = 0; k < nv; ++k)
-      r[k] = w.u[k] - (value_of<T>(dot(w.U[k].n, ap.ang)) + value_of<T>(dot(w.U[k].f, ap.lin)));
-    std::array<T, nv> acc;
-    for (int i = 0; i < nv; ++i) {
-      acc[i] = w.Dinv(i, 0) * r[0];
-      for (int k = 1; k < nv; ++k) acc[i] += w.Dinv(i, k) * r[k];
-      vdot[LI::v + i] = acc[i];
-    }
-    if constexpr (children<S, L>().size() > 0) {
-      auto an = ap.ang;
-      auto al = ap.lin;
-      [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
-        ((an = fit<A::angular_mask>(an + acc[K] * m.template col<K>().ang),
-          al = fit<A::linear_mask>(al + acc[K] * m.template col<K>().lin)),
-         ...);
-      }(std::make_integer_sequence<int, nv>{});
-      w.a = {an, al};
-    }
+    constexpr bool has_children = children<S, L>().size() > 0;
+    const auto call = [&](const auto& aP) FLANGE_INLINE_LAMBDA {
+      if constexpr (shared) aba_down_shared<A, T, has_children>(w, m, aP, vdot + LI::v);
+      else aba_down<A, T, has_children>(w, m, aP, vdot + LI::v);
+    };
+    if constexpr (LI::parent != 0) call(std::get<LI::parent - 1>(ws).a);
+    else call(motion_pair{base.wd, base.a});
   });
 }
 
 /// v̇ at (t, q, v) by the articulated-body algorithm, in the algebra the scene calls for.
-template <class S, class T>
+template <aba_steps Steps = aba_steps::automatic, class S, class T>
 void accelerations_articulated_body(const S& scene, const T& t, const T* q, const T* v, T* vdot) {
-  accelerations_articulated_body_in<algebra_t<S>>(scene, t, q, v, vdot);
+  accelerations_articulated_body_in<algebra_t<S>, Steps>(scene, t, q, v, vdot);
 }
 
 }  // namespace flange

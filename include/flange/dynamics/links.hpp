@@ -197,6 +197,15 @@ FLANGE_INLINE auto make_link_motion(const S& scene, const T* q) {
   }
 }
 
+/// Whether link L turns its parent's coordinates by a general 3 × 3 rotation
+/// (a run-time axis, a free orientation) rather than a typed one.
+template <class S, int L>
+constexpr bool general_rotation() {
+  using M = decltype(make_link_motion<spatial_algebra, double, L, true>(std::declval<const S&>(),
+                                                                         static_cast<const double*>(nullptr)));
+  return std::is_same_v<std::remove_cvref_t<decltype(std::declval<const M&>().E())>, Mat3<double>>;
+}
+
 /// The same links' motions with the set offsets in 3-D: for the pose pass of
 /// a planar scene, whose own motions hold in-plane offsets only. The joints'
 /// motions (and their sines and cosines) are reused, not recomputed.
