@@ -19,9 +19,10 @@
 // typed one. The crossover this gives on chains: 7 links with run-time axes,
 // 12 with coordinate axes, 13 in a plane; the floating legged robot (18
 // rates, branches 3 deep) stays with Newton–Euler. (Measured with
-// tools/chain_counts.sh; beyond about 8 links both algorithms cost more per
-// link than the model says, as their unrolled code outgrows the instruction
-// cache: docs/performance.md.)
+// tools/chain_counts.sh; beyond about 8 links Newton–Euler costs more per
+// link than the model says, as its unrolled code outgrows the instruction
+// cache, while the articulated body then shares its steps between links:
+// docs/performance.md.)
 // A scene with loops always takes the first: its constraint solve needs M.
 #pragma once
 #include "flange/detail/inline.hpp"
