@@ -3,6 +3,8 @@
 # or more algorithms, compiled once from tools/probes/chain_derivative.cpp at
 # the Release flags against this tree's headers:
 #   tools/chain_counts.sh N runtime|typed|planar default,articulated,other [CXXFLAGS...]
+# (also articulated_unrolled and articulated_shared: the articulated body with
+# its per-link steps forced into one form)
 # Prints one line per algorithm, "chain <axes> N=<n> <algorithm>
 # instructions=<i> ns=<t>": t is the median of 3 runs of 3·10⁵ calls, i the
 # difference between runs of 2000 and 1000 calls, so that start-up does not

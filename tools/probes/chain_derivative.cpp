@@ -2,7 +2,12 @@
 // the scale benchmark's random parameters and state (benchmarks/scale/scale.hpp),
 // its derivative called K times by one algorithm. Not part of the CMake build.
 //
-//   chain_derivative K ALGORITHM      ALGORITHM: default | articulated | other
+//   chain_derivative K ALGORITHM
+//
+// ALGORITHM: default (the System's derivative), articulated, other (the
+// algorithm the cost model did not pick), or articulated_unrolled and
+// articulated_shared (the articulated body with its per-link steps forced
+// into one form, dynamics/articulated_body.hpp: aba_steps).
 //
 // Compile-time choices: -DPROBE_N=<links> and -DPROBE_AXES=runtime|typed|planar.
 #include <flange/dynamics/other_algorithm.hpp>
@@ -55,6 +60,10 @@ int main(int argc, char** argv) {
   for (long i = 0; i < k; ++i) {
     asm volatile("" : : "r"(x.data()) : "memory");
     if (!std::strcmp(alg, "articulated")) accelerations_articulated_body(c, 0.0, q, v, vd);
+    else if (!std::strcmp(alg, "articulated_unrolled"))
+      accelerations_articulated_body<aba_steps::unrolled>(c, 0.0, q, v, vd);
+    else if (!std::strcmp(alg, "articulated_shared"))
+      accelerations_articulated_body<aba_steps::shared>(c, 0.0, q, v, vd);
     else if (!std::strcmp(alg, "other")) accelerations_other(c, 0.0, q, v, vd);
     else c(x, dx, 0.0);
     asm volatile("" : : "r"(dx.data()) : "memory");
