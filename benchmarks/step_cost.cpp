@@ -149,10 +149,7 @@ void scene_derivative(benchmark::State& st, const Scene& sc, typename Scene::sta
       // q̇ from each joint, as the System's derivative does, then v̇ by articulated bodies
       const double* q = x.data();
       const double* v = x.data() + Scene::n_q;
-      detail::for_links<Scene>([&](auto l) {
-        using LI = detail::link_info<Scene, decltype(l)::value>;
-        sc.template component<LI::joint>().qdot(q + LI::q, v + LI::v, dx.data() + LI::q);
-      });
+      detail::joint_rates(sc, q, v, dx.data());
       accelerations_articulated_body(sc, 0.0, q, v, dx.data() + Scene::n_q);
     } else {
       sc(x, dx, 0.0);

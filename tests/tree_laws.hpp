@@ -120,7 +120,8 @@ void check_laws(const S& s, std::mt19937& rng, law_errors& e, int samples = 10) 
     double scale = 1;
     for (int i = 0; i < NV; ++i) scale = std::max(scale, std::abs(dx[N + i]));
     for (int i = 0; i < NV; ++i)
-      e.algorithms = std::max({e.algorithms, std::abs(aba[i] - dx[N + i]) / scale, std::abs(shared[i] - dx[N + i]) / scale});
+      e.algorithms = std::max({e.algorithms, std::abs(aba[i] - dx[N + i]) / scale,  //
+                               std::abs(shared[i] - dx[N + i]) / scale});
     poison_stack();
     const auto sol = recover(s, t, x);
     e.residual = std::max(e.residual, scaled_residual(s, sol));

@@ -27,6 +27,7 @@
 #pragma once
 #include "flange/detail/inline.hpp"
 #include "flange/dynamics/articulated_body.hpp"
+#include "flange/dynamics/costs.hpp"
 #include "flange/dynamics/forward_dynamics.hpp"
 
 namespace flange {
@@ -34,21 +35,6 @@ namespace flange {
 enum class forward_algorithm { newton_euler_mass_matrix, articulated_body };
 
 namespace detail {
-
-/// The model's constants, ns (g++ 12 -O3; docs/performance.md, "Choosing the
-/// algorithm"). Newton–Euler + mass matrix: ne_rate per rate, and carry per
-/// mass-matrix entry a column is carried through (a rate times each rate of
-/// its ancestors), through a general rotation or a typed one (a coordinate
-/// axis); articulated body: per link, by its rotation, plus per_dof·(nv − 1)²
-/// for a joint of several rates (its D⁻¹).
-struct algorithm_costs {
-  double ne_rate, carry_general, carry_typed, aba_general, aba_typed, aba_dof;
-};
-template <class A>
-constexpr algorithm_costs costs_for() {
-  if constexpr (A::planar) return {12.8, 3.9, 3.9, 35, 35, 22};
-  else return {17.7, 31.7, 20, 110, 125, 22};
-}
 
 /// The two estimates for scene S, ns: {Newton–Euler + mass matrix, articulated body}.
 template <class S>

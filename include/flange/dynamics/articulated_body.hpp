@@ -32,6 +32,7 @@
 #include <tuple>
 #include <type_traits>
 
+#include "flange/dynamics/costs.hpp"
 #include "flange/dynamics/forward_dynamics.hpp"
 #include "flange/math/congruence.hpp"
 #include "flange/math/rotation.hpp"
@@ -263,14 +264,13 @@ struct aba_workspace<A, S, T, std::integer_sequence<int, L...>> {
   using type = std::tuple<aba_link<A, T, link_info<S, L + 1>::nv>...>;
 };
 
-/// The articulated body's instructions per link when its steps are unrolled
-/// into one function (g++ 12 -O3, tools/chain_counts.sh): about 480 in a
-/// plane, 1090 in space for a link turned by a typed rotation, 1460 by a
-/// general one.
+/// The articulated body's instructions when its steps are unrolled into one
+/// function: the sum of each link's (costs.hpp).
 template <class A, class S>
 constexpr int aba_unrolled_instructions() {
+  constexpr auto& k = aba_unrolled_link;
   return []<int... L>(std::integer_sequence<int, L...>) {
-    return (0 + ... + (A::planar ? 480 : general_rotation<S, L + 1>() ? 1460 : 1090));
+    return (0 + ... + (A::planar ? k.planar : general_rotation<S, L + 1>() ? k.general : k.typed));
   }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
 }
 /// Whether the up and down steps run as shared functions, one per kind of
@@ -281,7 +281,6 @@ constexpr int aba_unrolled_instructions() {
 /// calls only cost. This puts the switch at 9 links with run-time axes, 12
 /// with typed ones and 28 in a plane, where the measured crossovers are
 /// (8 | 10, 10 | 12, 32 | 48 links: unrolled faster | shared faster).
-inline constexpr int aba_shared_steps_above = 13000;
 template <class A, class S>
 constexpr bool aba_shared_steps() {
   return aba_unrolled_instructions<A, S>() > aba_shared_steps_above;
@@ -445,7 +444,8 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
     // GCC left the record's assignment out of line in a large translation
     // unit (the scale benchmark's chains), a call per link and the spills
     // around it (8-link spatial chain 806 → 1390 ns).
-    ::new (static_cast<void*>(&w.IA)) articulated_inertia<A, T>(articulated_inertia<A, T>::rigid(link_inertia<A, T, L>(scene)));
+    using inertia = articulated_inertia<A, T>;
+    ::new (static_cast<void*>(&w.IA)) inertia(inertia::rigid(link_inertia<A, T, L>(scene)));
   });
   // Up the tree, children first.
   for_links_split<S, true>([&](auto l) FLANGE_INLINE_LAMBDA {

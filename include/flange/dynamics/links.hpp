@@ -63,7 +63,6 @@ FLANGE_INLINE void for_links(F&& f) {
     (f(std::integral_constant<int, L + 1>{}), ...);
   }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
 }
-/// The same, children first.
 /// Every joint's neutral configuration (core/joint.hpp) into q[0 … n_q).
 template <class S, class T>
 void neutral_configuration(const S& scene, T* q) {
@@ -74,6 +73,17 @@ void neutral_configuration(const S& scene, T* q) {
   });
 }
 
+/// q̇ from (q, v), joint by joint (core/joint.hpp's qdot), into
+/// qdot[0 … n_q): the first part of every state derivative.
+template <class S, class T>
+FLANGE_INLINE void joint_rates(const S& scene, const T* q, const T* v, T* qdot) {
+  for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
+    using LI = link_info<S, decltype(l)::value>;
+    scene.template component<LI::joint>().qdot(q + LI::q, v + LI::v, qdot + LI::q);
+  });
+}
+
+/// f(integral_constant<L>) for L = n_links−1 … 1, children first.
 template <class S, class F>
 FLANGE_INLINE void for_links_reverse(F&& f) {
   [&]<int... L>(std::integer_sequence<int, L...>) FLANGE_INLINE_LAMBDA {

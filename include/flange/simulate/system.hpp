@@ -82,10 +82,7 @@ class System : public S {
     V* d = dxdt.data();
     const V* q = xs;
     const V* v = xs + S::n_q;
-    detail::for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
-      using LI = detail::link_info<S, decltype(l)::value>;
-      this->template component<LI::joint>().qdot(q + LI::q, v + LI::v, d + LI::q);
-    });
+    detail::joint_rates(static_cast<const S&>(*this), q, v, d);
     accelerations(*this, static_cast<V>(t), q, v, d + S::n_q);
   }
 
