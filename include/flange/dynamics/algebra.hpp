@@ -153,14 +153,15 @@ struct rigid_view {
 template <class T, class H, class I>
 rigid_view(T, H, I) -> rigid_view<T, H, I>;
 
-/// Link L's own inertia in algebra A, with what its bodies' types rule out typed away.
-template <class A, class T, int L, class S>
-FLANGE_INLINE auto link_inertia(const S& scene) {
-  constexpr auto K = inertia_kinds<S>::value;
-  const auto& I = scene.model().link[L];
+/// A link's own inertia I (the model's record) in algebra A, with what its
+/// bodies' types rule out typed away: a first moment known zero (HZero), a
+/// rotational inertia of kind IKind (inertia_kinds). A function of the
+/// kinds, not of the link.
+template <class A, class T, bool HZero, int IKind>
+FLANGE_INLINE auto link_inertia_of(const rigid_inertia<double>& I) {
   const T m = T(I.m);
   auto h = [&]() FLANGE_INLINE_LAMBDA {
-    if constexpr (K.h_zero[L]) return zero_vec<T>{};
+    if constexpr (HZero) return zero_vec<T>{};
     else return linear<A, T>(I.h);
   }();
   auto rot = [&]() FLANGE_INLINE_LAMBDA {
@@ -168,15 +169,22 @@ FLANGE_INLINE auto link_inertia(const S& scene) {
       diag_inertia<T, A::angular_mask> d;
       d.d[A::normal] = T(I.I(A::normal, A::normal));
       return d;
-    } else if constexpr (K.I_kind[L] == 0) {
+    } else if constexpr (IKind == 0) {
       return zero_inertia{};
-    } else if constexpr (K.I_kind[L] == 1) {
+    } else if constexpr (IKind == 1) {
       return diag_inertia<T, 7>{{T(I.I(0, 0)), T(I.I(1, 1)), T(I.I(2, 2))}};
     } else {
       return Mat3<T>(I.I.template cast<T>());
     }
   }();
   return rigid_view{m, h, rot};
+}
+
+/// Link L's own inertia in algebra A (link_inertia_of, with L's kinds).
+template <class A, class T, int L, class S>
+FLANGE_INLINE auto link_inertia(const S& scene) {
+  constexpr auto K = inertia_kinds<S>::value;
+  return link_inertia_of<A, T, K.h_zero[L], K.I_kind[L]>(scene.model().link[L]);
 }
 
 /// The type of a composite (subtree) inertia in algebra A: dense in 3-D, the

@@ -316,6 +316,28 @@ FLANGE_INLINE pivot_report<T> aba_invert_d(aba_link<A, T, NV>& w, const Mo& m) {
   return {};
 }
 
+/// One link's first step, down the tree: its ω from the parent's wP, its
+/// velocity-product acceleration c (forward_step from the parent's ω alone),
+/// its bias force p_A, and its own inertia (the model's record I, of kinds
+/// HZero, IKind: link_inertia_of) as the start of I_A. Like the other steps,
+/// a function of the link's kinds, shared between links in a large scene.
+template <class A, class T, bool HZero, int IKind, bool Torque, bool Force, class W, class Mo, class WP>
+FLANGE_INLINE void aba_start(W& w, const Mo& m, const WP& wP, const rigid_inertia<double>& I, const T* v,
+                             const Vec3<T>& n_ext, const Vec3<T>& f_ext) {
+  const auto k = forward_step<T>(link_kinematics{wP, zero_vec<T>{}, zero_vec<T>{}}, m, v, no_rates{});
+  w.w = fit<A::angular_mask>(k.w);
+  w.c = as_motion<A, T>(k.wd, k.a);
+  const auto pA = own_wrench_of<A, T, Torque, Force>(link_inertia_of<A, T, HZero, IKind>(I),
+                                                      link_kinematics{k.w, zero_vec<T>{}, zero_vec<T>{}}, n_ext, f_ext);
+  w.pA = as_force<A, T>(pA.n, pA.f);
+  // Built in place (the prvalue initialises w.IA itself), not assigned:
+  // GCC left the record's assignment out of line in a large translation
+  // unit (the scale benchmark's chains), a call per link and the spills
+  // around it (8-link spatial chain 806 → 1390 ns).
+  using inertia_type = articulated_inertia<A, T>;
+  ::new (static_cast<void*>(&w.IA)) inertia_type(inertia_type::rigid(link_inertia_of<A, T, HZero, IKind>(I)));
+}
+
 /// One link's step up the tree: U = I_A·S, D⁻¹, u = τ − Sᵀ·p_A, and, with a
 /// parent p (not nullptr), the parent's I_A += Xᵀ·(I_A − U·D⁻¹·Uᵀ)·X and
 /// p_A += Xᵀ·(p_A + I_a·c + U·D⁻¹·u). Its types are the link's kinds, not
@@ -393,6 +415,11 @@ FLANGE_INLINE void aba_down(W& w, const Mo& m, const AP& aP, T* vdot) {
 /// a large scene's links then run the same instructions, which stay in the
 /// instruction cache, where one unrolled copy per link did not
 /// (aba_shared_steps).
+template <class A, class T, bool HZero, int IKind, bool Torque, bool Force, class W, class Mo, class WP>
+[[gnu::noinline]] void aba_start_shared(W& w, const Mo& m, const WP& wP, const rigid_inertia<double>& I, const T* v,
+                                        const Vec3<T>& n_ext, const Vec3<T>& f_ext) {
+  aba_start<A, T, HZero, IKind, Torque, Force>(w, m, wP, I, v, n_ext, f_ext);
+}
 template <class A, class T, bool JointForces, class W, class Mo, class P>
 [[gnu::noinline]] pivot_report<T> aba_up_shared(W& w, const Mo& m, P* p, const T* tau) {
   return aba_up<A, T, JointForces>(w, m, p, tau);
@@ -423,29 +450,28 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
   gather_external<A>(scene, t, xs, motions, pose_motions<A>(scene, q, motions), n_ext, f_ext);
   std::array<T, S::n_v> tau;
   if constexpr (has_joint_forces<S>()) joint_forces(scene, t, xs, tau.data());
-  // Down the tree, parents first: each link's ω, its velocity-product
-  // acceleration c (forward_step from the parent's ω alone), its bias force
-  // p_A and its own inertia as the start of I_A.
+  // Down the tree, parents first: each link's ω, c, p_A and own inertia
+  // (aba_start). Shared only in space: a link's start step in a plane is a
+  // few dozen instructions, less than its call costs (planar 48-link chain:
+  // 2.1 µs unrolled, 2.2–2.3 shared; spatial 16 and 32 links with the step
+  // shared: 7–15 % faster, tools/chain_counts.sh).
+  constexpr bool shared_start = shared && !A::planar;
   for_links_split<S>([&](auto l) FLANGE_INLINE_LAMBDA {
     constexpr int L = decltype(l)::value;
     using LI = link_info<S, L>;
+    constexpr auto F = load_flags<S>::value;
     auto& w = std::get<L - 1>(ws);
     const auto wP = [&]() FLANGE_INLINE_LAMBDA {  // the parent's ω (the World's is zero)
       if constexpr (LI::parent != 0) return std::get<LI::parent - 1>(ws).w;
       else return zero_vec<T>{};
     }();
-    const auto k = forward_step<T>(link_kinematics{wP, zero_vec<T>{}, zero_vec<T>{}}, std::get<L - 1>(motions),
-                                   v + LI::v, no_rates{});
-    w.w = fit<A::angular_mask>(k.w);
-    w.c = as_motion<A, T>(k.wd, k.a);
-    const auto pA = own_wrench<A, T, L>(scene, link_kinematics{k.w, zero_vec<T>{}, zero_vec<T>{}}, n_ext, f_ext);
-    w.pA = as_force<A, T>(pA.n, pA.f);
-    // Built in place (the prvalue initialises w.IA itself), not assigned:
-    // GCC left the record's assignment out of line in a large translation
-    // unit (the scale benchmark's chains), a call per link and the spills
-    // around it (8-link spatial chain 806 → 1390 ns).
-    using inertia = articulated_inertia<A, T>;
-    ::new (static_cast<void*>(&w.IA)) inertia(inertia::rigid(link_inertia<A, T, L>(scene)));
+    constexpr auto K = inertia_kinds<S>::value;
+    const auto& I = scene.model().link[L];
+    const auto& m = std::get<L - 1>(motions);
+    if constexpr (shared_start)
+      aba_start_shared<A, T, K.h_zero[L], K.I_kind[L], F.torque[L], F.force[L]>(w, m, wP, I, v + LI::v, n_ext[L],
+                                                                               f_ext[L]);
+    else aba_start<A, T, K.h_zero[L], K.I_kind[L], F.torque[L], F.force[L]>(w, m, wP, I, v + LI::v, n_ext[L], f_ext[L]);
   });
   // Up the tree, children first.
   for_links_split<S, true>([&](auto l) FLANGE_INLINE_LAMBDA {

@@ -38,23 +38,30 @@ FLANGE_INLINE auto carry_up(const M& m, const force_pair<N, F>& w) {
   return force_pair{rot_t(m.E(), w.n) + cross(m.p, f), f};
 }
 
-/// The wrench link L needs for its own motion k: inertia, gravity (in a),
-/// minus the force elements' loads on it.
-template <class A, class T, int L, class S, class K>
-FLANGE_INLINE auto own_wrench(const S& scene, const K& k, const link_loads<S, T>& n_ext, const link_loads<S, T>& f_ext) {
-  constexpr auto F = load_flags<S>::value;
-  const auto I = link_inertia<A, T, L>(scene);
-  const auto f = I.m * k.a + cross(k.wd, I.h) + double_cross(k.w, I.h);
-  const auto n = I.I_o * k.wd + cross(k.w, I.I_o * k.w) + cross(I.h, k.a);
+/// The wrench a link of inertia I needs for its own motion k: inertia,
+/// gravity (in a), minus the force elements' loads on it (n_ext, f_ext when
+/// Torque, Force say the link has them). A function of the link's kinds, not
+/// of the link.
+template <class A, class T, bool Torque, bool Force, class I, class K>
+FLANGE_INLINE auto own_wrench_of(const I& inertia, const K& k, const Vec3<T>& n_ext, const Vec3<T>& f_ext) {
+  const auto f = inertia.m * k.a + cross(k.wd, inertia.h) + double_cross(k.w, inertia.h);
+  const auto n = inertia.I_o * k.wd + cross(k.w, inertia.I_o * k.w) + cross(inertia.h, k.a);
   auto with_force = [&]() FLANGE_INLINE_LAMBDA {
-    if constexpr (F.force[L]) return f - linear<A, T>(f_ext[L]);
+    if constexpr (Force) return f - linear<A, T>(f_ext);
     else return f;
   };
   auto with_torque = [&]() FLANGE_INLINE_LAMBDA {
-    if constexpr (F.torque[L]) return n - angular<A, T>(n_ext[L]);
+    if constexpr (Torque) return n - angular<A, T>(n_ext);
     else return n;
   };
   return force_pair{with_torque(), with_force()};
+}
+
+/// The wrench link L needs for its own motion k (own_wrench_of).
+template <class A, class T, int L, class S, class K>
+FLANGE_INLINE auto own_wrench(const S& scene, const K& k, const link_loads<S, T>& n_ext, const link_loads<S, T>& f_ext) {
+  constexpr auto F = load_flags<S>::value;
+  return own_wrench_of<A, T, F.torque[L], F.force[L]>(link_inertia<A, T, L>(scene), k, n_ext[L], f_ext[L]);
 }
 
 /// The Newton–Euler pass as a walk (kinematics.hpp): kinematics down,
