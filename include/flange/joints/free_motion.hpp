@@ -56,7 +56,8 @@ struct free_motion_motion {
   }
   template <class N, class F>
   FLANGE_INLINE std::array<T, 6> project(const N& torque, const F& force) const {
-    const Vec3<T> f = E.transpose() * force.dense(), n = torque.dense();
+    // rot_t, not Eigen's product: inlined however large the caller's unit is
+    const Vec3<T> f = rot_t(E, force).dense(), n = torque.dense();
     return {f(0), f(1), f(2), n(0), n(1), n(2)};
   }
   template <int K>
