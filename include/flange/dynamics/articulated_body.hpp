@@ -273,8 +273,9 @@ constexpr int aba_unrolled_instructions() {
     return (0 + ... + (A::planar ? k.planar : general_rotation<S, L + 1>() ? k.general : k.typed));
   }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
 }
-/// Whether the up and down steps run as shared functions, one per kind of
-/// link (aba_up_shared), rather than unrolled into the pass: when the
+/// Whether the per-link steps run as shared functions, one per kind of link
+/// (aba_up_shared, aba_down_shared, and aba_start_shared in space), rather
+/// than unrolled into the pass: when the
 /// unrolled code would pass about 13,000 instructions. Beyond that it
 /// outgrows the instruction cache, and the time per link rose by half while
 /// the instructions per link did not (docs/performance.md); below it the
