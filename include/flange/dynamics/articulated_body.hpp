@@ -275,8 +275,8 @@ constexpr int aba_unrolled_instructions() {
 }
 /// Whether the per-link steps run as shared functions, one per kind of link
 /// (aba_up_shared, aba_down_shared, and aba_start_shared in space), rather
-/// than unrolled into the pass: when the
-/// unrolled code would pass about 13,000 instructions. Beyond that it
+/// than unrolled into the pass: when the unrolled code would pass about
+/// 13,000 instructions. Beyond that it
 /// outgrows the instruction cache, and the time per link rose by half while
 /// the instructions per link did not (docs/performance.md); below it the
 /// calls only cost. This puts the switch at 9 links with run-time axes, 12
