@@ -105,23 +105,22 @@ void for_each_component(const S& scene, F&& f) {
   }(std::make_integer_sequence<int, S::n_components>{});
 }
 
-/// Calls f(component) for the component with run-time index c.
+/// Calls f(component) for the component with run-time index c: through a
+/// table with one small function per component, so that a large scene's
+/// loops over sets do not unroll f for every component at every call.
 template <class S, class F>
 void visit_component(const S& scene, int c, F&& f) {
-  for_each_component(scene, [&](auto i, const auto& comp) FLANGE_INLINE_LAMBDA {
-    if (decltype(i)::value == c) f(comp);
-  });
+  using entry = void (*)(const S&, F&);
+  static constexpr auto table = []<int... I>(std::integer_sequence<int, I...>) {
+    return std::array<entry, S::n_components>{+[](const S& s, F& g) { g(s.template component<I>()); }...};
+  }(std::make_integer_sequence<int, S::n_components>{});
+  table[c](scene, f);
 }
 
 /// The name and type name of component c, for a message.
 template <class S>
-std::string describe_component(const S& scene, int c) {
-  std::string r;
-  visit_component(scene, c, [&](const auto& comp) FLANGE_INLINE_LAMBDA {
-    using C = std::remove_cvref_t<decltype(comp)>;
-    r = concat(C::type_name, " \"", C::name.view(), "\"");
-  });
-  return r;
+std::string describe_component(const S&, int c) {
+  return concat(S::table.type_names[c], " \"", S::table.names[c], "\"");
 }
 
 template <class S>

@@ -122,6 +122,7 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
     (
         [&] {
           t.names[c] = Cs::name.view();
+          if constexpr (requires { Cs::type_name; }) t.type_names[c] = Cs::type_name;
           t.kinds[c] = Cs::kind;
           t.nframes[c] = int(Cs::frames.size());
           t.frame_base[c] = base;

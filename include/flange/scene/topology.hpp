@@ -17,6 +17,7 @@ inline constexpr int max_frames_per_component = 2;
 template <int NC, int NF, int NK>
 struct scene_table {
   std::array<std::string_view, NC> names{};
+  std::array<std::string_view, NC> type_names{};
   std::array<role, NC> kinds{};
   std::array<int, NC> nframes{};
   std::array<int, NC> frame_base{};
@@ -58,24 +59,51 @@ constexpr int find_root(std::array<int, M>& p, int i) {
   return i;
 }
 
-/// FNV-1a of a name: the scene analysis compares these before the names, so
-/// that a scene of hundreds of components stays within the compiler's
-/// constexpr budget (each string comparison costs it dozens of steps).
+/// FNV-1a of a name: the scene analysis finds names by these (name_index).
 constexpr std::uint32_t name_hash(std::string_view s) {
   std::uint32_t h = 2166136261u;
   for (const char c : s) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
   return h;
 }
+/// The components by name: an open-addressing hash table, so that finding the
+/// frame a connection names costs a few steps, not a sweep of the scene (a
+/// sweep per connection made the analysis quadratic in the scene's size,
+/// which at a few hundred components cost the compiler hundreds of MB).
+template <int NC>
+struct name_index {
+  static constexpr int size = [] {
+    int n = 1;
+    while (n < 2 * NC) n *= 2;
+    return n;
+  }();
+  std::array<std::uint32_t, NC> hash{};
+  std::array<int, size> slot{};  ///< component + 1, or 0 where empty
+  int duplicate = -1;            ///< the first component whose name an earlier one has
+};
 template <int NC, int NF, int NK>
-constexpr auto name_hashes(const scene_table<NC, NF, NK>& t) {
-  std::array<std::uint32_t, NC> h{};
-  for (int c = 0; c < NC; ++c) h[c] = name_hash(t.names[c]);
-  return h;
+constexpr name_index<NC> index_names(const scene_table<NC, NF, NK>& t) {
+  name_index<NC> r{};
+  constexpr int mask = name_index<NC>::size - 1;
+  for (int c = 0; c < NC; ++c) {
+    r.hash[c] = name_hash(t.names[c]);
+    for (int i = int(r.hash[c] & mask);; i = (i + 1) & mask) {
+      const int d = r.slot[i] - 1;
+      if (d < 0) {
+        r.slot[i] = c + 1;
+        break;
+      }
+      if (r.hash[d] == r.hash[c] && t.names[d] == t.names[c]) {
+        if (r.duplicate < 0) r.duplicate = c;
+        break;
+      }
+    }
+  }
+  return r;
 }
 
-/// The frame "component.frame" names, or −1; hashes from name_hashes(t).
-template <int NC, int NF, int NK, class Hashes>
-constexpr int find_frame(const scene_table<NC, NF, NK>& t, std::string_view s, const Hashes& hashes) {
+/// The frame "component.frame" names, or −1.
+template <int NC, int NF, int NK>
+constexpr int find_frame(const scene_table<NC, NF, NK>& t, std::string_view s, const name_index<NC>& index) {
   // A loop, not find/substr: with g++'s -fsanitize=undefined those carry
   // null-pointer checks that are not constant expressions.
   std::size_t dot = 0;
@@ -83,24 +111,28 @@ constexpr int find_frame(const scene_table<NC, NF, NK>& t, std::string_view s, c
   if (dot == s.size()) return -1;
   const std::string_view comp(s.data(), dot), frame(s.data() + dot + 1, s.size() - dot - 1);
   const std::uint32_t h = name_hash(comp);
-  for (int c = 0; c < NC; ++c)
-    if (hashes[c] == h && t.names[c] == comp)
+  constexpr int mask = name_index<NC>::size - 1;
+  for (int i = int(h & mask); index.slot[i] != 0; i = (i + 1) & mask) {
+    const int c = index.slot[i] - 1;
+    if (index.hash[c] == h && t.names[c] == comp) {
       for (int k = 0; k < t.nframes[c]; ++k)
         if (t.frame_names[c][k] == frame) return t.frame_base[c] + k;
+      return -1;
+    }
+  }
   return -1;
 }
 template <int NC, int NF, int NK>
 constexpr int find_frame(const scene_table<NC, NF, NK>& t, std::string_view s) {
-  return find_frame(t, s, name_hashes(t));
+  return find_frame(t, s, index_names(t));
 }
 
 template <int NC, int NF, int NK>
 constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
   topology<NC, NF, NK> r{};
-  const auto hashes = name_hashes(t);
+  const auto index = index_names(t);
+  r.duplicate_name = index.duplicate;
   for (int c = 0; c < NC; ++c) {
-    for (int d = 0; d < c && r.duplicate_name < 0; ++d)
-      if (hashes[c] == hashes[d] && t.names[c] == t.names[d]) r.duplicate_name = c;
     if (t.kinds[c] == role::world) {
       if (++r.n_worlds == 1) r.world = c;
       else if (r.second_world < 0) r.second_world = c;
@@ -109,7 +141,7 @@ constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
   std::array<int, NF> parent{};
   for (int f = 0; f < NF; ++f) parent[f] = f;
   for (int k = 0; k < NK; ++k) {
-    const int a = find_frame(t, t.conn_a[k], hashes), b = find_frame(t, t.conn_b[k], hashes);
+    const int a = find_frame(t, t.conn_a[k], index), b = find_frame(t, t.conn_b[k], index);
     r.conn_frame_a[k] = a;
     r.conn_frame_b[k] = b;
     if (a < 0 || b < 0) {
@@ -254,6 +286,24 @@ constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topolo
     }
   }
   if (!topo.ok()) return r;
+  // Each set's joints and rigid edges, in scene order (compressed rows):
+  // the walk below visits a set's own edges, not every component per set.
+  std::array<int, NF + 1> first{};
+  std::array<int, 2 * NC> incident{};
+  {
+    auto each_edge = [&](auto&& f) {
+      for (int e = 0; e < NC; ++e) {
+        if (t.kinds[e] != role::joint && t.kinds[e] != role::rigid) continue;
+        const int sa = topo.set_of[t.frame_base[e]], sb = topo.set_of[t.frame_base[e] + 1];
+        f(sa, e);
+        if (sb != sa) f(sb, e);
+      }
+    };
+    each_edge([&](int set, int) { ++first[set + 1]; });
+    for (int i = 0; i < NF; ++i) first[i + 1] += first[i];
+    std::array<int, NF> fill{};
+    each_edge([&](int set, int e) { incident[first[set] + fill[set]++] = e; });
+  }
   std::array<int, NF> queue{};
   int head = 0, tail = 0;
   const int root = topo.set_of[t.frame_base[topo.world]];
@@ -263,8 +313,9 @@ constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topolo
   while (head < tail) {
     const int u = queue[head++];
     r.set_order[r.n_tree_sets++] = u;
-    for (int e = 0; e < NC; ++e) {
-      if (used[e] || (t.kinds[e] != role::joint && t.kinds[e] != role::rigid)) continue;
+    for (int i = first[u]; i < first[u + 1]; ++i) {
+      const int e = incident[i];
+      if (used[e]) continue;
       const int sa = topo.set_of[t.frame_base[e]], sb = topo.set_of[t.frame_base[e] + 1];
       if (sa != u && sb != u) continue;
       used[e] = true;
