@@ -1,13 +1,66 @@
-// A list of types, and its I-th element.
+// A list of types, its I-th element, and values of a list of types held side
+// by side and reached by position.
+//
+// Both look an element up as one base among a class's bases, one base per
+// element, so that nothing instantiated holds the rest of the list. The
+// recursive alternatives (std::tuple_element in GCC 12's libstdc++, which
+// steps three elements at a time; a type_list split head from tail) make a
+// class per step with the remaining elements: quadratic in the length of
+// the list, gigabytes of compiler memory for a scene of a few hundred
+// components. A lookup is memoised per position (nth), so each position's
+// base is searched for once.
 #pragma once
-#include <tuple>
+#include <cstddef>
+#include <utility>
 
 namespace flange::detail {
 
 template <class...>
 struct type_list {};
 
+template <std::size_t I, class T>
+struct indexed_type {
+  using type = T;
+};
+template <class Seq, class... Ts>
+struct type_index;
+template <std::size_t... I, class... Ts>
+struct type_index<std::index_sequence<I...>, Ts...> : indexed_type<I, Ts>... {};
+template <std::size_t I, class T>
+indexed_type<I, T> select_indexed(const indexed_type<I, T>&);
+
 template <int I, class... Ts>
-using nth_t = std::tuple_element_t<I, std::tuple<Ts...>>;
+struct nth {
+  using type = typename decltype(select_indexed<std::size_t(I)>(
+      std::declval<const type_index<std::index_sequence_for<Ts...>, Ts...>&>()))::type;
+};
+template <int I, class... Ts>
+using nth_t = typename nth<I, Ts...>::type;
+
+/// One value of type T at position I of an indexed_values.
+template <std::size_t I, class T>
+struct indexed_value {
+  T value;
+};
+/// Values of the types Ts (values or references), side by side; get<I>()
+/// is the I-th.
+template <class Seq, class... Ts>
+class indexed_values;
+template <std::size_t... I, class... Ts>
+class indexed_values<std::index_sequence<I...>, Ts...> : indexed_value<I, Ts>... {
+ public:
+  /// Each value initialised from one argument, forwarded (so references
+  /// are held as references, and a value is moved or copied once).
+  template <class... A>
+  explicit indexed_values(std::in_place_t, A&&... a) : indexed_value<I, Ts>{std::forward<A>(a)}... {}
+  template <int K>
+  [[nodiscard]] const nth_t<K, Ts...>& get() const {
+    return static_cast<const indexed_value<std::size_t(K), nth_t<K, Ts...>>&>(*this).value;
+  }
+  template <int K>
+  [[nodiscard]] nth_t<K, Ts...>& get() {
+    return static_cast<indexed_value<std::size_t(K), nth_t<K, Ts...>>&>(*this).value;
+  }
+};
 
 }  // namespace flange::detail

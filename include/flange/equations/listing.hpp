@@ -7,6 +7,8 @@
 #include <ostream>
 #include <string>
 
+#include <boost/hana/for_each.hpp>
+
 #include "flange/equations/residual.hpp"
 
 namespace flange {

@@ -7,6 +7,7 @@
 // orientation equation 3 (Modelica's equalityConstraint).
 #pragma once
 #include <Eigen/Core>
+#include <boost/hana/for_each.hpp>
 
 #include "flange/scene/named_state.hpp"
 #include "flange/core/component.hpp"

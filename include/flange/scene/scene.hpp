@@ -19,13 +19,9 @@
 #include <array>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 
-#include <boost/hana/at.hpp>
-#include <boost/hana/filter.hpp>
-#include <boost/hana/for_each.hpp>
 #include <boost/hana/tuple.hpp>
-#include <boost/hana/type.hpp>
-#include <boost/hana/unpack.hpp>
 
 #include "flange/core/component.hpp"
 #include "flange/core/joint.hpp"
@@ -397,11 +393,14 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
   }
 
   // ---------------------------------------------------------- values
-  explicit Scene(Cs... cs) : components_(std::move(cs)...) {}
+  /// From one argument per component, in order, forwarded: each component
+  /// is moved or copied once, into its place (see make_scene below).
+  template <class... A>
+  explicit Scene(std::in_place_t, A&&... a) : components_(std::in_place, std::forward<A>(a)...) {}
 
   template <int I>
   [[nodiscard]] const auto& component() const {
-    return boost::hana::at_c<I>(components_);
+    return components_.template get<I>();
   }
   template <fixed_string Name>
   [[nodiscard]] const auto& get() const {
@@ -409,47 +408,62 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
     static_assert(i >= 0, "flange: the scene has no component of this name");
     return component<i>();
   }
-  [[nodiscard]] const auto& components() const { return components_; }
 
   /// The World's gravity.
   [[nodiscard]] Vec3d gravity() const { return component<topology.world < 0 ? 0 : topology.world>().g(); }
   static constexpr bool has_gravity = component_type<topology.world < 0 ? 0 : topology.world>::has_gravity;
 
  private:
-  boost::hana::tuple<Cs...> components_;
+  detail::indexed_values<std::index_sequence_for<Cs...>, Cs...> components_;
 };
 
 namespace detail {
-template <class L, class R>
-struct list_concat;
-template <class... A, class... B>
-struct list_concat<type_list<A...>, type_list<B...>> {
-  using type = type_list<A..., B...>;
+/// The positions of the arguments that are connections (Connection) or
+/// components (!Connection), in order.
+template <bool Connection, class... Args>
+constexpr auto positions() {
+  constexpr std::array<bool, sizeof...(Args)> pick{(is_connection<Args>::value == Connection)...};
+  std::array<int, (0 + ... + int(is_connection<Args>::value == Connection))> r{};
+  int k = 0;
+  for (int i = 0; i < int(sizeof...(Args)); ++i)
+    if (pick[i]) r[k++] = i;
+  return r;
+}
+template <auto Positions, class Seq, class... Args>
+struct pick_types;
+template <auto Positions, std::size_t... I, class... Args>
+struct pick_types<Positions, std::index_sequence<I...>, Args...> {
+  using type = type_list<nth_t<Positions[I], Args...>...>;
 };
-template <class... Args>
-struct split;
-template <>
-struct split<> {
-  using connections = type_list<>;
-};
-template <class A, class... Rest>
-struct split<A, Rest...> {
-  using connections = std::conditional_t<is_connection<A>::value,
-                                         typename list_concat<type_list<A>, typename split<Rest...>::connections>::type,
-                                         typename split<Rest...>::connections>;
-};
+
+/// Make<the Scene of these arguments>(std::in_place, its components...):
+/// the arguments are sorted into components and connections by looking each
+/// one up by position, not by recursing over the list or filtering a tuple,
+/// which both instantiate something per argument that holds the rest of the
+/// list (gigabytes of compiler memory for a scene of a few hundred
+/// components). Each component is forwarded to its place, not passed on by
+/// value from layer to layer: a large scene's set-up stays small code.
+template <template <class> class Make, class... Args>
+auto make_scene(Args&&... args) {
+  static constexpr auto components = positions<false, std::remove_cvref_t<Args>...>();
+  static constexpr auto connections = positions<true, std::remove_cvref_t<Args>...>();
+  using connection_types = typename pick_types<connections, std::make_index_sequence<connections.size()>,
+                                               std::remove_cvref_t<Args>...>::type;
+  using component_types = typename pick_types<components, std::make_index_sequence<components.size()>,
+                                              std::remove_cvref_t<Args>...>::type;
+  const indexed_values<std::index_sequence_for<Args...>, Args&&...> all(std::in_place, std::forward<Args>(args)...);
+  return [&]<std::size_t... I>(std::index_sequence<I...>) {
+    return Make<Scene<component_types, connection_types>>(
+        std::in_place, std::forward<nth_t<components[I], Args...>>(all.template get<components[I]>())...);
+  }(std::make_index_sequence<components.size()>{});
+}
 }  // namespace detail
 
 /// The structure of a scene from components and connections, in any order
 /// (flange::scene(...) in simulate/system.hpp adds the dynamics on top).
 template <class... Args>
 auto compose(Args... args) {
-  namespace hana = boost::hana;
-  using connections = typename detail::split<Args...>::connections;
-  auto is_component = [](auto const& a) { return hana::bool_c<!is_connection<std::decay_t<decltype(a)>>::value>; };
-  return hana::unpack(hana::filter(hana::make_tuple(std::move(args)...), is_component), [](auto... c) {
-    return Scene<detail::type_list<decltype(c)...>, connections>(std::move(c)...);
-  });
+  return detail::make_scene<std::type_identity_t>(std::move(args)...);
 }
 
 }  // namespace flange

@@ -26,7 +26,10 @@ class System : public S {
   using scene_type = S;
   using model_type = detail::model_for<S>;
 
-  explicit System(S s) : S(std::move(s)), model_(detail::build_model(static_cast<const S&>(*this))) {
+  /// From the scene's components, in order (flange::scene below).
+  template <class... A>
+  explicit System(std::in_place_t, A&&... components)
+      : S(std::in_place, std::forward<A>(components)...), model_(detail::build_model(static_cast<const S&>(*this))) {
     if constexpr (detail::constant_mass_matrix<S>()) detail::fold_mass_matrix(*this, model_);
   }
 
@@ -92,9 +95,8 @@ class System : public S {
 /// Builds a scene from components and connections, in any order: its
 /// structure (scene/scene.hpp) and its dynamics.
 template <class... Args>
-auto scene(Args... args) {
-  auto s = compose(std::move(args)...);
-  return System<decltype(s)>(std::move(s));
+auto scene(Args&&... args) {
+  return detail::make_scene<System>(std::forward<Args>(args)...);
 }
 
 /// The state with every joint at its neutral configuration (angles and
