@@ -105,16 +105,24 @@ void for_each_component(const S& scene, F&& f) {
   }(std::make_integer_sequence<int, S::n_components>{});
 }
 
-/// Calls f(component) for the component with run-time index c: through a
-/// table with one small function per component, so that a large scene's
-/// loops over sets do not unroll f for every component at every call.
+/// Calls f(component) for the component with run-time index c. In a scene
+/// of more than 16 components, through a table with one small function per
+/// component, so that the set-up loops over sets do not unroll f for every
+/// component at every call; a small scene keeps the comparisons, which
+/// inline f and cost less than the indirect call (`recover` of the arm).
 template <class S, class F>
 void visit_component(const S& scene, int c, F&& f) {
-  using entry = void (*)(const S&, F&);
-  static constexpr auto table = []<int... I>(std::integer_sequence<int, I...>) {
-    return std::array<entry, S::n_components>{+[](const S& s, F& g) { g(s.template component<I>()); }...};
-  }(std::make_integer_sequence<int, S::n_components>{});
-  table[c](scene, f);
+  if constexpr (S::n_components <= 16) {
+    for_each_component(scene, [&](auto i, const auto& comp) FLANGE_INLINE_LAMBDA {
+      if (decltype(i)::value == c) f(comp);
+    });
+  } else {
+    using entry = void (*)(const S&, F&);
+    static constexpr auto table = []<int... I>(std::integer_sequence<int, I...>) {
+      return std::array<entry, S::n_components>{+[](const S& s, F& g) { g(s.template component<I>()); }...};
+    }(std::make_integer_sequence<int, S::n_components>{});
+    table[c](scene, f);
+  }
 }
 
 /// The name and type name of component c, for a message.
