@@ -6,8 +6,8 @@
 // recursive alternatives (std::tuple_element in GCC 12's libstdc++, which
 // steps three elements at a time; a type_list split head from tail) make a
 // class per step with the remaining elements: quadratic in the length of
-// the list, gigabytes of compiler memory for a scene of a few hundred
-// components. A lookup is memoised per position (nth), so each position's
+// the list: at 128 links (513 components) the lookup alone cost GCC 1.2 GB
+// of its 3.3 GB front end. A lookup is memoised per position (nth), so each position's
 // base is searched for once.
 #pragma once
 #include <cstddef>
