@@ -25,13 +25,13 @@
 
 #include "flange/core/component.hpp"
 #include "flange/core/joint.hpp"
-#include "flange/detail/closest_name.hpp"
 #include "flange/detail/type_list.hpp"
 #include "flange/scene/connect.hpp"
 #include "flange/scene/diagnostics.hpp"
 #include "flange/scene/named_state.hpp"
 #include "flange/scene/joint_check.hpp"
 #include "flange/scene/topology.hpp"
+#include "flange/scene/wiring.hpp"
 
 namespace flange {
 
@@ -101,11 +101,11 @@ inline constexpr std::array<int, 4> frame_var_offset{0, 3, 12, 15};
 template <class Components, class Connections>
 class Scene;
 
-template <Component... Cs, class... Ks>
-class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
+template <Component... Cs, int... F>
+class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
  public:
   static constexpr int n_components = sizeof...(Cs);
-  static constexpr int n_connections = sizeof...(Ks);
+  static constexpr int n_connections = detail::wiring<F...>::n_connections;
   static constexpr int n_frames = (0 + ... + int(Cs::frames.size()));
   using component_types = detail::type_list<Cs...>;
   template <int I>
@@ -113,31 +113,9 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
 
  private:
   static constexpr auto make_table() {
-    detail::scene_table<n_components, n_frames, n_connections> t{};
-    int c = 0, base = 0;
-    (
-        [&] {
-          t.names[c] = Cs::name.view();
-          if constexpr (requires { Cs::type_name; }) t.type_names[c] = Cs::type_name;
-          t.kinds[c] = Cs::kind;
-          t.nframes[c] = int(Cs::frames.size());
-          t.frame_base[c] = base;
-          for (int k = 0; k < int(Cs::frames.size()); ++k) t.frame_names[c][k] = Cs::frames[k];
-          base += int(Cs::frames.size());
-          if constexpr (Cs::kind == role::joint) {
-            if constexpr (joint_requirements::sizes<Cs>) {
-              t.nq[c] = Cs::nq;
-              t.nv[c] = Cs::nv;
-            }
-          }
-          if constexpr (Cs::kind == role::rigid) {
-            if constexpr (requires { Cs::rotation_axis; }) t.rigid_rotation[c] = Cs::rotation_axis;
-          }
-          ++c;
-        }(),
-        ...);
-    int k = 0;
-    ((t.conn_a[k] = Ks::a, t.conn_b[k] = Ks::b, ++k), ...);
+    auto t = detail::component_table<n_connections, Cs...>();
+    constexpr auto& f = detail::wiring<F...>::frames;
+    for (int k = 0; k < n_connections; ++k) t.conn_a[k] = f[2 * k], t.conn_b[k] = f[2 * k + 1];
     return t;
   }
 
@@ -147,48 +125,14 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
   static constexpr auto tree = detail::build_tree(table, topology);
 
   // ---------------------------------------------------------- diagnostics
-  // A connection naming no frame: the message, the connection and the frame
-  // name closest to the one it misspells.
+  // (A connection naming no frame was reported as the names were resolved:
+  // scene/wiring.hpp.)
  private:
-  struct name_buffer {
-    char data[128]{};
-    std::size_t size = 0;
-    [[nodiscard]] constexpr std::string_view view() const { return {data, size}; }
-  };
-  /// "component.frame" of global frame f (names up to 127 characters).
-  static constexpr name_buffer frame_name(int f) {
-    name_buffer b;
-    for (int c = 0; c < n_components; ++c)
-      if (f >= table.frame_base[c] && f < table.frame_base[c] + table.nframes[c]) {
-        auto put = [&](std::string_view s) {
-          for (char ch : s)
-            if (b.size < sizeof b.data - 1) b.data[b.size++] = ch;
-        };
-        put(table.names[c]);
-        put(".");
-        put(table.frame_names[c][f - table.frame_base[c]]);
-      }
-    return b;
-  }
-  static constexpr int closest_frame(std::string_view name) {
-    int best = 0, best_d = -1;
-    for (int f = 0; f < n_frames; ++f) {
-      const auto b = frame_name(f);
-      const int d = detail::edit_distance(name, b.view());
-      if (best_d < 0 || d < best_d) best = f, best_d = d;
-    }
-    return best;
-  }
-  template <int K>
-  static constexpr name_buffer misspelt_frame_suggestion =
-      frame_name(closest_frame(detail::find_frame(table, table.conn_a[K]) < 0 ? table.conn_a[K] : table.conn_b[K]));
-  template <int K>
-  static constexpr bool report_bad_name() {
-    if constexpr (K >= 0) {
-      constexpr auto& b = misspelt_frame_suggestion<K>;
-      (void)sizeof(diagnostic::connection_names_no_frame<detail::nth_t<K, Ks...>,
-                                                         diagnostic::did_you_mean<fixed_string<b.size + 1>(b.view())>>);
-    }
+  /// Diag<connection K, as the user wrote it>, when K ≥ 0.
+  template <int K, template <class...> class Diag>
+  static constexpr bool report_connection() {
+    if constexpr (K >= 0)
+      (void)sizeof(Diag<detail::connection_of<table, topology.conn_frame_a[K], topology.conn_frame_b[K]>>);
     return true;
   }
 
@@ -197,10 +141,9 @@ class Scene<detail::type_list<Cs...>, detail::type_list<Ks...>> {
   // only the first component of that name, so the redundant connection and
   // the cut-off component that follow are its symptoms, not more mistakes.
   static_assert((detail::report<topology.duplicate_name, diagnostic::duplicate_component_name, Cs...>()));
-  static_assert(report_bad_name<topology.duplicate_name < 0 ? topology.bad_name_connection : -1>());
-  static_assert((detail::report<topology.self_connection, diagnostic::frame_listed_twice_in_connection, Ks...>()));
-  static_assert((detail::report<topology.duplicate_name < 0 ? topology.redundant_connection : -1,
-                                diagnostic::frame_connected_twice_in_one_set, Ks...>()));
+  static_assert(report_connection<topology.self_connection, diagnostic::frame_listed_twice_in_connection>());
+  static_assert(report_connection<topology.duplicate_name < 0 ? topology.redundant_connection : -1,
+                                  diagnostic::frame_connected_twice_in_one_set>());
   static_assert((detail::report<topology.n_worlds == 0 ? 0 : -1, diagnostic::no_world, detail::type_list<Cs...>>()));
   static_assert((detail::report<topology.second_world, diagnostic::two_worlds, Cs...>()));
   /// Frame k of component c that no connection names (−1 if none).
@@ -453,7 +396,7 @@ auto make_scene(Args&&... args) {
                                               std::remove_cvref_t<Args>...>::type;
   const indexed_values<std::index_sequence_for<Args...>, Args&&...> all(std::in_place, std::forward<Args>(args)...);
   return [&]<std::size_t... I>(std::index_sequence<I...>) {
-    return Make<Scene<component_types, connection_types>>(
+    return Make<Scene<component_types, typename resolve_connections<component_types, connection_types>::type>>(
         std::in_place, std::forward<nth_t<components[I], Args...>>(all.template get<components[I]>())...);
   }(std::make_index_sequence<components.size()>{});
 }

@@ -22,7 +22,7 @@ struct scene_table {
   std::array<int, NC> nframes{};
   std::array<int, NC> frame_base{};
   std::array<std::array<std::string_view, max_frames_per_component>, NC> frame_names{};
-  std::array<std::string_view, NK> conn_a{}, conn_b{};
+  std::array<int, NK> conn_a{}, conn_b{};  ///< each connection's two frames (global index), −1 for a name naming none
   std::array<int, NC> nq{}, nv{};            ///< a joint's configuration and velocity sizes (0 for others)
   std::array<int, NC> rigid_rotation{};      ///< a rigid edge's rotation: −2 none, −1 any, k about axis k
 };
@@ -141,7 +141,7 @@ constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
   std::array<int, NF> parent{};
   for (int f = 0; f < NF; ++f) parent[f] = f;
   for (int k = 0; k < NK; ++k) {
-    const int a = find_frame(t, t.conn_a[k], index), b = find_frame(t, t.conn_b[k], index);
+    const int a = t.conn_a[k], b = t.conn_b[k];
     r.conn_frame_a[k] = a;
     r.conn_frame_b[k] = b;
     if (a < 0 || b < 0) {
