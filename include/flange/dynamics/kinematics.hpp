@@ -74,6 +74,20 @@ FLANGE_INLINE auto forward_step(const K& P, const M& m, const V& v, const VD& vd
 template <class S, int L, class Ctx, class D>
 auto walk(Ctx& ctx, const D& down);
 
+template <class S, int L, class Ctx, class D>
+[[gnu::noinline]] auto walk_call(Ctx& ctx, const D& down) {
+  return walk<S, L>(ctx, down);
+}
+/// The walk of child L's subtree: inlined, or, above split_links_above
+/// links, a call (the rule of for_links_split, links.hpp). Inlined, a long
+/// chain's walk nests every link's step into one function, which took the
+/// optimiser more than 6 GB at 128 links.
+template <class S, int L, class Ctx, class D>
+FLANGE_INLINE auto walk_subtree(Ctx& ctx, const D& down) {
+  if constexpr (S::tree.n_links - 1 > split_links_above) return walk_call<S, L>(ctx, down);
+  else return walk<S, L>(ctx, down);
+}
+
 template <class S, int L, std::size_t I, class Ctx, class D, class Acc>
 FLANGE_INLINE auto walk_children(Ctx& ctx, const D& down, Acc acc) {
   constexpr auto cs = children<S, L>();
@@ -81,7 +95,7 @@ FLANGE_INLINE auto walk_children(Ctx& ctx, const D& down, Acc acc) {
     return acc;
   } else {
     constexpr int C = cs[I];
-    auto r = walk<S, C>(ctx, ctx.template down<L, C>(down));
+    auto r = walk_subtree<S, C>(ctx, ctx.template down<L, C>(down));
     return walk_children<S, L, I + 1>(ctx, down, ctx.template gather<L, C>(std::move(acc), std::move(r)));
   }
 }
