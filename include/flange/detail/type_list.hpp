@@ -7,8 +7,9 @@
 // steps three elements at a time; a type_list split head from tail) make a
 // class per step with the remaining elements: quadratic in the length of
 // the list: at 128 links (513 components) the lookup alone cost GCC 1.2 GB
-// of its 3.3 GB front end. A lookup is memoised per position (nth), so each position's
-// base is searched for once.
+// of its 3.3 GB front end. A lookup is memoised per position and list
+// (nth<I, type_list<Ts...>>, two arguments however long the list), so each
+// position's base is searched for once.
 #pragma once
 #include <cstddef>
 #include <utility>
@@ -29,13 +30,23 @@ struct type_index<std::index_sequence<I...>, Ts...> : indexed_type<I, Ts>... {};
 template <std::size_t I, class T>
 indexed_type<I, T> select_indexed(const indexed_type<I, T>&);
 
-template <int I, class... Ts>
+/// The index of a list, once per list.
+template <class List>
+struct list_index;
+template <class... Ts>
+struct list_index<type_list<Ts...>> {
+  using type = type_index<std::index_sequence_for<Ts...>, Ts...>;
+};
+/// Element I of List. It takes the list as one type, not its elements: an
+/// instantiation then holds two arguments, where nth<I, Ts...> held all N
+/// elements (N lookups of N arguments each).
+template <int I, class List>
 struct nth {
   using type = typename decltype(select_indexed<std::size_t(I)>(
-      std::declval<const type_index<std::index_sequence_for<Ts...>, Ts...>&>()))::type;
+      std::declval<const typename list_index<List>::type&>()))::type;
 };
 template <int I, class... Ts>
-using nth_t = typename nth<I, Ts...>::type;
+using nth_t = typename nth<I, type_list<Ts...>>::type;
 
 /// One value of type T at position I of an indexed_values.
 template <std::size_t I, class T>
@@ -53,12 +64,15 @@ class indexed_values<std::index_sequence<I...>, Ts...> : indexed_value<I, Ts>...
   /// are held as references, and a value is moved or copied once).
   template <class... A>
   explicit indexed_values(std::in_place_t, A&&... a) : indexed_value<I, Ts>{std::forward<A>(a)}... {}
+  // The return type is deduced (written out, it would put the whole list
+  // into each get<K>'s mangled name): const T& for a value held by a const
+  // indexed_values, the referred object for a reference.
   template <int K>
-  [[nodiscard]] const nth_t<K, Ts...>& get() const {
+  [[nodiscard]] auto& get() const {
     return static_cast<const indexed_value<std::size_t(K), nth_t<K, Ts...>>&>(*this).value;
   }
   template <int K>
-  [[nodiscard]] nth_t<K, Ts...>& get() {
+  [[nodiscard]] auto& get() {
     return static_cast<indexed_value<std::size_t(K), nth_t<K, Ts...>>&>(*this).value;
   }
 };

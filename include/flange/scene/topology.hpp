@@ -316,8 +316,7 @@ constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topolo
     for (int i = first[u]; i < first[u + 1]; ++i) {
       const int e = incident[i];
       if (used[e]) continue;
-      const int sa = topo.set_of[t.frame_base[e]], sb = topo.set_of[t.frame_base[e] + 1];
-      if (sa != u && sb != u) continue;
+      const int sa = topo.set_of[t.frame_base[e]], sb = topo.set_of[t.frame_base[e] + 1];  // one of them is u
       used[e] = true;
       const int other = sa == u ? sb : sa;
       const int dir = sa == u ? 1 : -1;
