@@ -78,13 +78,13 @@ template <class S, int L, class Ctx, class D>
 [[gnu::noinline]] auto walk_call(Ctx& ctx, const D& down) {
   return walk<S, L>(ctx, down);
 }
-/// The walk of child L's subtree: inlined, or, above split_links_above
-/// links, a call (the rule of for_links_split, links.hpp). Inlined, a long
-/// chain's walk nests every link's step into one function, which took the
-/// optimiser more than 6 GB at 128 links.
+/// The walk of child L's subtree: inlined, or a call when split_links<S>
+/// (links.hpp, the rule of for_links_split). Inlined, a long chain's walk
+/// nests every link's step into one function, which took the optimiser more
+/// than 6 GB at 128 links.
 template <class S, int L, class Ctx, class D>
 FLANGE_INLINE auto walk_subtree(Ctx& ctx, const D& down) {
-  if constexpr (S::tree.n_links - 1 > split_links_above) return walk_call<S, L>(ctx, down);
+  if constexpr (split_links<S>) return walk_call<S, L>(ctx, down);
   else return walk<S, L>(ctx, down);
 }
 

@@ -96,6 +96,9 @@ FLANGE_INLINE void for_links_reverse(F&& f) {
 /// gigabytes, while a call per link costs a few nanoseconds against the
 /// hundred or so its step takes. Smaller scenes stay one straight-line block.
 inline constexpr int split_links_above = 16;
+/// Whether scene S's passes call a function per link (or per subtree).
+template <class S>
+inline constexpr bool split_links = S::tree.n_links - 1 > split_links_above;
 
 template <int L, class F>
 [[gnu::noinline]] void link_step(F& f) {
@@ -105,7 +108,7 @@ template <int L, class F>
 /// when the scene has more than split_links_above links.
 template <class S, bool Reverse = false, class F>
 FLANGE_INLINE void for_links_split(F&& f) {
-  if constexpr (S::tree.n_links - 1 <= split_links_above) {
+  if constexpr (!split_links<S>) {
     if constexpr (Reverse) for_links_reverse<S>(f);
     else for_links<S>(f);
   } else {

@@ -114,8 +114,7 @@ class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
  private:
   static constexpr auto make_table() {
     auto t = detail::component_table<n_connections, Cs...>();
-    constexpr auto& f = detail::wiring<F...>::frames;
-    for (int k = 0; k < n_connections; ++k) t.conn_a[k] = f[2 * k], t.conn_b[k] = f[2 * k + 1];
+    t.conn = detail::wiring<F...>::frames;
     return t;
   }
 
@@ -132,7 +131,7 @@ class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
   template <int K, template <class...> class Diag>
   static constexpr bool report_connection() {
     if constexpr (K >= 0)
-      (void)sizeof(Diag<detail::connection_of<table, topology.conn_frame_a[K], topology.conn_frame_b[K]>>);
+      (void)sizeof(Diag<detail::connection_of<table, table.conn[2 * K], table.conn[2 * K + 1]>>);
     return true;
   }
 
@@ -151,9 +150,7 @@ class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
     if (c < 0) return -1;
     for (int k = 0; k < table.nframes[c]; ++k) {
       bool named = false;
-      for (int j = 0; j < n_connections; ++j)
-        named = named || topology.conn_frame_a[j] == table.frame_base[c] + k ||
-                topology.conn_frame_b[j] == table.frame_base[c] + k;
+      for (int f : table.conn) named = named || f == table.frame_base[c] + k;
       if (!named) return k;
     }
     return -1;

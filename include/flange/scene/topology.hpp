@@ -22,7 +22,9 @@ struct scene_table {
   std::array<int, NC> nframes{};
   std::array<int, NC> frame_base{};
   std::array<std::array<std::string_view, max_frames_per_component>, NC> frame_names{};
-  std::array<int, NK> conn_a{}, conn_b{};  ///< each connection's two frames (global index), −1 for a name naming none
+  /// Connection k's two frames (global numbers) are conn[2k] and conn[2k + 1],
+  /// −1 for a name naming none: the layout of the scene type's wiring.
+  std::array<int, 2 * NK> conn{};
   std::array<int, NC> nq{}, nv{};            ///< a joint's configuration and velocity sizes (0 for others)
   std::array<int, NC> rigid_rotation{};      ///< a rigid edge's rotation: −2 none, −1 any, k about axis k
 };
@@ -40,7 +42,6 @@ struct topology {
   int unreached = -1;      ///< first component with no connection path to the World
 
   // --- connection sets
-  std::array<int, NK> conn_frame_a{}, conn_frame_b{};
   std::array<int, NF> set_of{};    ///< frame → set (sets numbered in paper order)
   std::array<int, NF> number{};    ///< frame → the paper's frame number, 1-based
   std::array<int, NF> by_number{}; ///< paper number − 1 → frame
@@ -127,11 +128,20 @@ constexpr int find_frame(const scene_table<NC, NF, NK>& t, std::string_view s) {
   return find_frame(t, s, index_names(t));
 }
 
+/// The first connection of frame pairs f (connection k: f[2k], f[2k + 1])
+/// with a name that names no frame (−1), or −1 if every name resolved.
+template <std::size_t M>
+constexpr int first_unresolved(const std::array<int, M>& f) {
+  for (std::size_t i = 0; i < M; ++i)
+    if (f[i] < 0) return int(i / 2);
+  return -1;
+}
 template <int NC, int NF, int NK>
 constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
   topology<NC, NF, NK> r{};
   const auto index = index_names(t);
   r.duplicate_name = index.duplicate;
+  r.bad_name_connection = first_unresolved(t.conn);
   for (int c = 0; c < NC; ++c) {
     if (t.kinds[c] == role::world) {
       if (++r.n_worlds == 1) r.world = c;
@@ -141,13 +151,8 @@ constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
   std::array<int, NF> parent{};
   for (int f = 0; f < NF; ++f) parent[f] = f;
   for (int k = 0; k < NK; ++k) {
-    const int a = t.conn_a[k], b = t.conn_b[k];
-    r.conn_frame_a[k] = a;
-    r.conn_frame_b[k] = b;
-    if (a < 0 || b < 0) {
-      if (r.bad_name_connection < 0) r.bad_name_connection = k;
-      continue;
-    }
+    const int a = t.conn[2 * k], b = t.conn[2 * k + 1];
+    if (a < 0 || b < 0) continue;  // first_unresolved above
     if (a == b) {
       if (r.self_connection < 0) r.self_connection = k;
       continue;
@@ -170,10 +175,7 @@ constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
       r.by_number[next - 1] = f;
     }
   };
-  for (int k = 0; k < NK; ++k) {
-    give(r.conn_frame_a[k]);
-    give(r.conn_frame_b[k]);
-  }
+  for (int f : t.conn) give(f);
   for (int f = 0; f < NF; ++f) give(f);
   // Sets in the order of their lowest-numbered frame.
   std::array<int, NF> set_of_root{};

@@ -112,8 +112,8 @@ template <class... Cs, class... Ks>
 struct resolve_connections<type_list<Cs...>, type_list<Ks...>> {
   static constexpr auto table = component_table<0, Cs...>();
   static constexpr int nk = int(sizeof...(Ks));
+  static constexpr auto index = index_names(table);
   static constexpr std::array<int, 2 * sizeof...(Ks)> frames = [] {
-    const auto index = index_names(table);
     const std::array<std::string_view, sizeof...(Ks)> a{Ks::a...}, b{Ks::b...};
     std::array<int, 2 * sizeof...(Ks)> r{};
     for (int k = 0; k < nk; ++k) {
@@ -123,11 +123,7 @@ struct resolve_connections<type_list<Cs...>, type_list<Ks...>> {
     return r;
   }();
   /// The first connection naming no frame, −1 if none.
-  static constexpr int bad = [] {
-    for (int k = 0; k < nk; ++k)
-      if (frames[2 * k] < 0 || frames[2 * k + 1] < 0) return k;
-    return -1;
-  }();
+  static constexpr int bad = first_unresolved(frames);
 
  private:
   static constexpr int closest_frame(std::string_view name) {
@@ -155,7 +151,7 @@ struct resolve_connections<type_list<Cs...>, type_list<Ks...>> {
   // A name given twice is the scene's to report, first and alone:
   // connections naming it reach only the first component of that name, so
   // a connection that then names no frame is its symptom, not a mistake.
-  static_assert(report_bad_name<index_names(table).duplicate < 0 ? bad : -1>());
+  static_assert(report_bad_name<index.duplicate < 0 ? bad : -1>());
 
   using type = typename make_wiring<frames, std::make_index_sequence<2 * sizeof...(Ks)>>::type;
 };
