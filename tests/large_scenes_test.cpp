@@ -2,22 +2,26 @@
 // axes) and a floating tree of 32 joints (models::legged<4, 8>, 38 rates); built
 // with -DFLANGE_LARGE_CHAIN=128 -DFLANGE_LARGE_LEGS=15, a chain of 128 links
 // and a tree of 60 joints (66 rates), too costly to compile in every CI run
-// (docs/performance.md, "Compile time at scale").
+// (docs/performance.md, "Compile time at scale"; tools/large_scenes.sh).
 // Both compile, both take the articulated-body algorithm by the cost model
-// (dynamics/algorithm.hpp), and their accelerations are checked against a
-// second algorithm: Newton–Euler inverse dynamics (newton_euler.hpp) at the
-// computed v̇ must give back the joints' forces, zero here, to round-off of
-// the bias forces it balances. (Newton–Euler with the mass matrix, the other
-// forward algorithm, is checked against the articulated body on every
-// random tree of tree_test and tree_joints_test; its unrolled N³ LDLᵀ is
-// not built at this size.) The chain also conserves energy under RK4, and
-// neither the derivative nor a stepping loop touches the heap
-// (allocation_counter.cpp).
+// (dynamics/algorithm.hpp), and their accelerations are checked against two
+// others built from Newton–Euler inverse dynamics (newton_euler.hpp):
+// - at the computed v̇ it must give back the joints' forces, zero here, to
+//   round-off of the bias forces it balances;
+// - Newton–Euler with the mass matrix, the other forward algorithm, with M
+//   built column by column from inverse dynamics (Walker and Orin's first
+//   method; the library's own composite-rigid-body M is checked against the
+//   articulated body on every random tree of tree_test and tree_joints_test,
+//   but its unrolled N³ LDLᵀ is not built at this size).
+// And the chain's derivative and a stepping loop of RK4 do not touch the
+// heap (allocation_counter.cpp).
 #include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
 #include <catch2/catch.hpp>
 #include <flange/flange.hpp>
 #include <flange/models/chain.hpp>
 #include <flange/models/legged.hpp>
+#include <Eigen/Dense>
+#include <limits>
 #include <random>
 
 #include "allocation_counter.hpp"
@@ -75,6 +79,45 @@ double inverse_dynamics_residual(const S& scene, const typename S::state_type& x
   return r / scale;
 }
 
+/// Newton–Euler with the mass matrix, the forward algorithm the cost model
+/// did not pick, built from inverse dynamics alone as in Walker and Orin's
+/// first method: h = ID(q, v, 0), column i of M = ID(q, v, eᵢ) − h, and
+/// v̇ = M⁻¹·(τ − h), τ = 0, by a dense LDLᵀ (Eigen's). Returns
+/// max |v̇_derivative − v̇_M| / max |v̇_M| and, in rcond, the LDLᵀ's estimate
+/// of M's reciprocal condition number.
+///
+/// This reference is the less precise of the two: M's entries carry the
+/// round-off of h, and solving with M multiplies it by M's condition number,
+/// so its relative error is of order ε / rcond. (A probe with the 64-link
+/// chain's derivative in long double: the articulated body's v̇ within 4e-15
+/// of it, this reference within 1.4e-10, at rcond 1.6e-7 to 3.3e-7.)
+struct forward_check {
+  double error, rcond;
+};
+template <class S>
+forward_check mass_matrix_forward_error(const S& scene, const typename S::state_type& x) {
+  typename S::state_type dx{};
+  scene(x, dx, 0.0);
+  const double* q = x.data();
+  const double* v = x.data() + S::n_q;
+  std::array<double, S::n_v> a{};
+  const auto h = inverse_dynamics(scene, 0.0, q, v, a.data());
+  Eigen::MatrixXd M(S::n_v, S::n_v);
+  Eigen::VectorXd rhs(S::n_v), vd(S::n_v);
+  for (int i = 0; i < S::n_v; ++i) {
+    a[i] = 1.0;
+    const auto c = inverse_dynamics(scene, 0.0, q, v, a.data());
+    a[i] = 0.0;
+    for (int k = 0; k < S::n_v; ++k) M(k, i) = c[k] - h[k];
+    rhs(i) = -h[i];
+    vd(i) = dx[S::n_q + i];
+  }
+  // M from differences is symmetric to round-off; LDLᵀ reads its lower half.
+  const Eigen::LDLT<Eigen::MatrixXd> f(M);
+  const Eigen::VectorXd ref = f.solve(rhs);
+  return {(vd - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff(), f.rcond()};
+}
+
 }  // namespace
 
 TEST_CASE("a long spatial chain takes the articulated body and balances its inverse dynamics") {
@@ -86,6 +129,10 @@ TEST_CASE("a long spatial chain takes the articulated body and balances its inve
     const double r = inverse_dynamics_residual(c, random_state<S>(seed));
     INFO("seed " << seed << ": residual " << r);
     CHECK(r < 1e-12);  // round-off of sums over the links, n·ε ≈ 1e-14 (measured ≤ 3e-16)
+    const auto m = mass_matrix_forward_error(c, random_state<S>(seed));
+    INFO("against Newton–Euler + M: " << m.error << ", rcond(M) " << m.rcond);
+    // The reference's own error bound, ε·cond(M) (measured ≤ 0.13 of it).
+    CHECK(m.error < std::numeric_limits<double>::epsilon() / m.rcond);
   }
 }
 
@@ -119,6 +166,10 @@ TEST_CASE("a floating tree of four long legs takes the articulated body and bala
     const double r = inverse_dynamics_residual(t, x);
     INFO("seed " << seed << ": residual " << r);
     CHECK(r < 1e-12);  // round-off of sums over the links, n·ε ≈ 1e-14 (measured ≤ 3e-16)
+    const auto m = mass_matrix_forward_error(t, x);
+    INFO("against Newton–Euler + M: " << m.error << ", rcond(M) " << m.rcond);
+    CHECK(m.error < std::numeric_limits<double>::epsilon() / m.rcond);  // as for the chain
+    CHECK(m.error < 1e-10);  // the issue's bound: M is better conditioned here (rcond ≈ 1e-5)
     typename S::state_type dx{};
     CHECK(test::count_allocations([&] { t(x, dx, 0.0); }) == 0);
   }
