@@ -7,9 +7,11 @@
 #
 #   compile large_scenes chain=<n> legs=<k> seconds=<s> max_rss_mb=<m>
 #
-# followed by Catch2's summary. The test itself checks the articulated body
-# against Newton–Euler inverse dynamics (≤ 1e-12) on both scenes, and RK4
-# steps of the chain without the heap.
+# followed by Catch2's summary (LARGE_SCENES_TEST_ARGS are passed to the test:
+# "-s" prints every check with its measured error). The test itself checks
+# the articulated body against Newton–Euler inverse dynamics (≤ 1e-12) and
+# Newton–Euler with the mass matrix (within that reference's ε/rcond(M)) on
+# both scenes, and RK4 steps of the chain without the heap.
 #
 #   tools/large_scenes.sh [chain links] [leg links] [extra compiler flags...]
 #   (default: 128 15)
@@ -30,4 +32,4 @@ read -r secs rss < <( { /usr/bin/time -f "%e %M" g++ "${flags[@]}" -c "$root/tes
 echo "compile large_scenes chain=$chain legs=$legs seconds=$secs max_rss_mb=$((rss / 1024))"
 g++ "$work/main.o" "$work/alloc.o" "$work/large.o" -o "$work/large_scenes" \
   -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=aligned_alloc,--wrap=posix_memalign
-"$work/large_scenes"
+"$work/large_scenes" ${LARGE_SCENES_TEST_ARGS:-}

@@ -113,14 +113,14 @@ class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
 
  private:
   static constexpr auto make_table() {
-    auto t = detail::component_table<n_connections, Cs...>();
+    auto t = detail::component_table_v<n_connections, Cs...>;
     t.conn = detail::wiring<F...>::frames;
     return t;
   }
 
  public:
   static constexpr auto table = make_table();
-  static constexpr auto topology = detail::analyze(table);
+  static constexpr auto topology = detail::analyze(table, detail::name_index_v<n_connections, Cs...>);
   static constexpr auto tree = detail::build_tree(table, topology);
 
   // ---------------------------------------------------------- diagnostics
@@ -298,7 +298,7 @@ class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
     return -1;
   }
   /// Global index of the frame "component.frame".
-  static constexpr int frame_index(std::string_view name) { return detail::find_frame(table, name); }
+  static constexpr int frame_index(std::string_view name) { return detail::find_frame(table, name, detail::name_index_v<n_connections, Cs...>); }
 
   // ---------------------------------------------------------- joints and the state
   /// The number of joint coordinates q and of joint rates v (they differ for

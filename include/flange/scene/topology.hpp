@@ -123,11 +123,6 @@ constexpr int find_frame(const scene_table<NC, NF, NK>& t, std::string_view s, c
   }
   return -1;
 }
-template <int NC, int NF, int NK>
-constexpr int find_frame(const scene_table<NC, NF, NK>& t, std::string_view s) {
-  return find_frame(t, s, index_names(t));
-}
-
 /// The first connection of frame pairs f (connection k: f[2k], f[2k + 1])
 /// with a name that names no frame (−1), or −1 if every name resolved.
 template <std::size_t M>
@@ -136,10 +131,10 @@ constexpr int first_unresolved(const std::array<int, M>& f) {
     if (f[i] < 0) return int(i / 2);
   return -1;
 }
+/// The analysis of table t, whose names index (index_names(t)) found.
 template <int NC, int NF, int NK>
-constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t) {
+constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t, const name_index<NC>& index) {
   topology<NC, NF, NK> r{};
-  const auto index = index_names(t);
   r.duplicate_name = index.duplicate;
   r.bad_name_connection = first_unresolved(t.conn);
   for (int c = 0; c < NC; ++c) {

@@ -58,6 +58,14 @@ constexpr auto component_table() {
   return t;
 }
 
+/// The component table and its name index, once per scene: the connections'
+/// resolution and the Scene read the same constants (a variable template is
+/// evaluated once per program; a function call in each was evaluated twice).
+template <int NK, class... Cs>
+inline constexpr auto component_table_v = component_table<NK, Cs...>();
+template <int NK, class... Cs>
+inline constexpr auto name_index_v = index_names(component_table_v<NK, Cs...>);
+
 /// "component.frame" of global frame f, as a constant (names up to 127
 /// characters).
 struct frame_name_buffer {
@@ -110,9 +118,9 @@ struct resolve_connections;
 /// it misspells; other mistakes are the scene's to report.
 template <class... Cs, class... Ks>
 struct resolve_connections<type_list<Cs...>, type_list<Ks...>> {
-  static constexpr auto table = component_table<0, Cs...>();
   static constexpr int nk = int(sizeof...(Ks));
-  static constexpr auto index = index_names(table);
+  static constexpr auto& table = component_table_v<nk, Cs...>;
+  static constexpr auto& index = name_index_v<nk, Cs...>;
   static constexpr std::array<int, 2 * sizeof...(Ks)> frames = [] {
     const std::array<std::string_view, sizeof...(Ks)> a{Ks::a...}, b{Ks::b...};
     std::array<int, 2 * sizeof...(Ks)> r{};
