@@ -131,7 +131,7 @@ TEST_CASE("a long spatial chain takes the articulated body and balances its inve
     CHECK(r < 1e-12);  // round-off of sums over the links, n·ε ≈ 1e-14 (measured ≤ 3e-16)
     const auto m = mass_matrix_forward_error(c, random_state<S>(seed));
     INFO("against Newton–Euler + M: " << m.error << ", rcond(M) " << m.rcond);
-    // The reference's own error bound, ε·cond(M) (measured ≤ 0.13 of it).
+    // The reference's own error bound, ε·cond(M) (measured ≤ 0.14 of it, 64 and 128 links).
     CHECK(m.error < std::numeric_limits<double>::epsilon() / m.rcond);
   }
 }
@@ -169,7 +169,7 @@ TEST_CASE("a floating tree of four long legs takes the articulated body and bala
     const auto m = mass_matrix_forward_error(t, x);
     INFO("against Newton–Euler + M: " << m.error << ", rcond(M) " << m.rcond);
     CHECK(m.error < std::numeric_limits<double>::epsilon() / m.rcond);  // as for the chain
-    CHECK(m.error < 1e-10);  // the issue's bound: M is better conditioned here (rcond ≈ 1e-5)
+    CHECK(m.error < 1e-10);  // the issue's bound: M is better conditioned here (rcond 1e-6 to 1e-5)
     typename S::state_type dx{};
     CHECK(test::count_allocations([&] { t(x, dx, 0.0); }) == 0);
   }

@@ -298,7 +298,9 @@ class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
     return -1;
   }
   /// Global index of the frame "component.frame".
-  static constexpr int frame_index(std::string_view name) { return detail::find_frame(table, name, detail::name_index_v<n_connections, Cs...>); }
+  static constexpr int frame_index(std::string_view name) {
+    return detail::find_frame(table, name, detail::name_index_v<n_connections, Cs...>);
+  }
 
   // ---------------------------------------------------------- joints and the state
   /// The number of joint coordinates q and of joint rates v (they differ for

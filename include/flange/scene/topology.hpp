@@ -131,7 +131,8 @@ constexpr int first_unresolved(const std::array<int, M>& f) {
     if (f[i] < 0) return int(i / 2);
   return -1;
 }
-/// The analysis of table t, whose names index (index_names(t)) found.
+/// The analysis of table t. Its names' index, index_names(t), is passed in:
+/// the scene evaluates it once, for this and for the connections' resolution.
 template <int NC, int NF, int NK>
 constexpr topology<NC, NF, NK> analyze(const scene_table<NC, NF, NK>& t, const name_index<NC>& index) {
   topology<NC, NF, NK> r{};
