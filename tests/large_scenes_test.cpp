@@ -60,62 +60,53 @@ typename S::state_type random_state(std::uint32_t seed) {
   return x;
 }
 
-/// max |ID(q, v, v̇) − τ| / max |ID(q, v, 0)|, τ = 0: how far the computed v̇
-/// is from balancing the bias forces, relative to them.
+/// The articulated body's v̇ (the scene's derivative) against two algorithms
+/// built from Newton–Euler inverse dynamics, ID(q, v, v̇), with τ = 0 and
+/// h = ID(q, v, 0), the bias forces:
+/// - residual: max |ID(q, v, v̇)| / max |h|, how far v̇ is from balancing
+///   the bias forces, relative to them;
+/// - error: Newton–Euler with the mass matrix, the forward algorithm the
+///   cost model did not pick, built as in Walker and Orin's first method:
+///   column i of M = ID(q, v, eᵢ) − h, v̇_M = M⁻¹·(τ − h) by a dense LDLᵀ
+///   (Eigen's); max |v̇ − v̇_M| / max |v̇_M|, and rcond, the LDLᵀ's estimate
+///   of M's reciprocal condition number.
+///
+/// The second reference is the less precise of the two: M's entries carry
+/// the round-off of h, and solving with M multiplies it by M's condition
+/// number, so its relative error is of order ε / rcond. (A probe with the
+/// 64-link chain's derivative in long double: the articulated body's v̇
+/// within 4e-15 of it, this reference within 1.4e-10, at rcond 1.6e-7 to
+/// 3.3e-7.)
+struct second_algorithms {
+  double residual, error, rcond;
+};
 template <class S>
-double inverse_dynamics_residual(const S& scene, const typename S::state_type& x) {
+second_algorithms check_against_newton_euler(const S& scene, const typename S::state_type& x) {
   typename S::state_type dx{};
   scene(x, dx, 0.0);
   const double* q = x.data();
   const double* v = x.data() + S::n_q;
-  const auto tau = inverse_dynamics(scene, 0.0, q, v, dx.data() + S::n_q);
-  const std::array<double, S::n_v> zero{};
-  const auto b = inverse_dynamics(scene, 0.0, q, v, zero.data());
+  const double* vd = dx.data() + S::n_q;
+  std::array<double, S::n_v> a{};
+  const auto h = inverse_dynamics(scene, 0.0, q, v, a.data());
+  const auto tau = inverse_dynamics(scene, 0.0, q, v, vd);
+  Eigen::MatrixXd M(S::n_v, S::n_v);
+  Eigen::VectorXd rhs(S::n_v);
   double r = 0, scale = 0;
   for (int i = 0; i < S::n_v; ++i) {
     r = std::max(r, std::abs(tau[i]));
-    scale = std::max(scale, std::abs(b[i]));
-  }
-  return r / scale;
-}
-
-/// Newton–Euler with the mass matrix, the forward algorithm the cost model
-/// did not pick, built from inverse dynamics alone as in Walker and Orin's
-/// first method: h = ID(q, v, 0), column i of M = ID(q, v, eᵢ) − h, and
-/// v̇ = M⁻¹·(τ − h), τ = 0, by a dense LDLᵀ (Eigen's). Returns
-/// max |v̇_derivative − v̇_M| / max |v̇_M| and, in rcond, the LDLᵀ's estimate
-/// of M's reciprocal condition number.
-///
-/// This reference is the less precise of the two: M's entries carry the
-/// round-off of h, and solving with M multiplies it by M's condition number,
-/// so its relative error is of order ε / rcond. (A probe with the 64-link
-/// chain's derivative in long double: the articulated body's v̇ within 4e-15
-/// of it, this reference within 1.4e-10, at rcond 1.6e-7 to 3.3e-7.)
-struct forward_check {
-  double error, rcond;
-};
-template <class S>
-forward_check mass_matrix_forward_error(const S& scene, const typename S::state_type& x) {
-  typename S::state_type dx{};
-  scene(x, dx, 0.0);
-  const double* q = x.data();
-  const double* v = x.data() + S::n_q;
-  std::array<double, S::n_v> a{};
-  const auto h = inverse_dynamics(scene, 0.0, q, v, a.data());
-  Eigen::MatrixXd M(S::n_v, S::n_v);
-  Eigen::VectorXd rhs(S::n_v), vd(S::n_v);
-  for (int i = 0; i < S::n_v; ++i) {
+    scale = std::max(scale, std::abs(h[i]));
     a[i] = 1.0;
     const auto c = inverse_dynamics(scene, 0.0, q, v, a.data());
     a[i] = 0.0;
     for (int k = 0; k < S::n_v; ++k) M(k, i) = c[k] - h[k];
     rhs(i) = -h[i];
-    vd(i) = dx[S::n_q + i];
   }
   // M from differences is symmetric to round-off; LDLᵀ reads its lower half.
   const Eigen::LDLT<Eigen::MatrixXd> f(M);
   const Eigen::VectorXd ref = f.solve(rhs);
-  return {(vd - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff(), f.rcond()};
+  const Eigen::VectorXd diff = Eigen::Map<const Eigen::VectorXd>(vd, S::n_v) - ref;
+  return {r / scale, diff.cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff(), f.rcond()};
 }
 
 }  // namespace
@@ -126,10 +117,9 @@ TEST_CASE("a long spatial chain takes the articulated body and balances its inve
   STATIC_REQUIRE(S::n_v == chain_links);
   STATIC_REQUIRE(algorithm_for<S>() == forward_algorithm::articulated_body);
   for (std::uint32_t seed = 1; seed <= 3; ++seed) {
-    const double r = inverse_dynamics_residual(c, random_state<S>(seed));
-    INFO("seed " << seed << ": residual " << r);
-    CHECK(r < 1e-12);  // round-off of sums over the links, n·ε ≈ 1e-14 (measured ≤ 3e-16)
-    const auto m = mass_matrix_forward_error(c, random_state<S>(seed));
+    const auto m = check_against_newton_euler(c, random_state<S>(seed));
+    INFO("seed " << seed << ": residual " << m.residual);
+    CHECK(m.residual < 1e-12);  // round-off of sums over the links, n·ε ≈ 1e-14 (measured ≤ 3e-16)
     INFO("against Newton–Euler + M: " << m.error << ", rcond(M) " << m.rcond);
     // The reference's own error bound, ε·cond(M) (measured ≤ 0.14 of it, 64 and 128 links).
     CHECK(m.error < std::numeric_limits<double>::epsilon() / m.rcond);
@@ -163,10 +153,9 @@ TEST_CASE("a floating tree of four long legs takes the articulated body and bala
     double n = 0;
     for (int i = 3; i < 7; ++i) n += x[i] * x[i];
     for (int i = 3; i < 7; ++i) x[i] /= std::sqrt(n);
-    const double r = inverse_dynamics_residual(t, x);
-    INFO("seed " << seed << ": residual " << r);
-    CHECK(r < 1e-12);  // round-off of sums over the links, n·ε ≈ 1e-14 (measured ≤ 3e-16)
-    const auto m = mass_matrix_forward_error(t, x);
+    const auto m = check_against_newton_euler(t, x);
+    INFO("seed " << seed << ": residual " << m.residual);
+    CHECK(m.residual < 1e-12);  // round-off of sums over the links, n·ε ≈ 1e-14 (measured ≤ 3e-16)
     INFO("against Newton–Euler + M: " << m.error << ", rcond(M) " << m.rcond);
     CHECK(m.error < std::numeric_limits<double>::epsilon() / m.rcond);  // as for the chain
     CHECK(m.error < 1e-10);  // the issue's bound: M is better conditioned here (rcond 1e-6 to 1e-5)
