@@ -29,6 +29,13 @@
 // relative pose and motion, for recovering a cut joint's internals. scene/joint_check.hpp turns a missing
 // member into one static_assert naming the joint and the member.
 //
+// A joint that moves about (or along) one axis n, fixed in both its frames
+// but known only at run time, may also declare axis_frame = true, n() and
+// motion_in_axis_frame<T, Dir, NeedRotation>(q): its motion in coordinates
+// turned so that n is e_z, which has the typed form of a joint about z. Its
+// link then computes in those coordinates (dynamics/axis_frames.hpp), and
+// the algorithms see a typed motion subspace instead of a dense one.
+//
 // The motion object m at q, for the link behind the joint (the child):
 //
 //   m.E              rotates frame_a coordinates into child coordinates
@@ -119,6 +126,15 @@ concept has_generalized_force = requires(const J& j, const double* p, double* ta
   j.generalized_force(0.0, x, p, p, tau);
 };
 }  // namespace detail
+
+/// Whether a joint offers an axis frame (above): a run-time axis n() its
+/// link may be turned to, and its motion in that frame.
+template <class J>
+concept axis_framed_joint = requires(const J& j, const double* q) {
+  requires J::axis_frame;
+  { j.n() } -> std::convertible_to<Vec3d>;
+  j.template motion_in_axis_frame<double, 1, true>(q);
+};
 
 /// Whether a joint's normalize(q) changes anything, so that a stepper must
 /// project between steps: a joint says so with `static constexpr bool

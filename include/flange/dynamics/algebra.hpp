@@ -132,7 +132,10 @@ struct inertia_kinds {
               const int L = S::tree.set_link[set];
               if (L < 0) return;
               const bool at_origin = S::tree.set_parent[set] < 0 && !Comp::has_cm_offset;
-              const int kind = !at_origin ? 2 : Comp::is_point ? 0 : Comp::is_diagonal ? 1 : 2;
+              // A body in a link turned to its joint's axis frame
+              // (axis_frames.hpp) is turned with it: a diagonal J is not.
+              const bool turned = axis_frames<S>::turned[L];
+              const int kind = !at_origin ? 2 : Comp::is_point ? 0 : (Comp::is_diagonal && !turned) ? 1 : 2;
               t.I_kind[L] = kind > t.I_kind[L] ? kind : t.I_kind[L];
               t.h_zero[L] = t.h_zero[L] && at_origin;
             }

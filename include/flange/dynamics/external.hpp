@@ -98,7 +98,7 @@ template <class S, int C, int K, class T>
 FLANGE_INLINE frame_kinematics<T> frame_from_link(const S& scene, const link_pose<T>& L) {
   constexpr int set = S::topology.set_of[S::table.frame_base[C] + K];
   constexpr bool on_world = force_links<S, C>()[K] == 0;
-  constexpr bool turned = S::tree.set_rotation[set] != -2;  // a FixedRotation on the way from the link origin
+  constexpr bool turned = set_rotation_kind<S>(set) != -2;  // a FixedRotation (or an axis frame) on the way
   const Vec3<T> p = scene.model().set_offset[set].template cast<T>();
   frame_kinematics<T> f;
   f.a = f.wd = Vec3<T>::Zero();

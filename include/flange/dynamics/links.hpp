@@ -37,7 +37,7 @@ struct link_info {
   static constexpr bool has_offset = tree.set_parent[parent_set] >= 0;
   /// The rotation of the frame it hangs on relative to the parent link: −2
   /// none, k about coordinate axis k, −1 any.
-  static constexpr int set_rotation = tree.set_rotation[parent_set];
+  static constexpr int set_rotation = set_rotation_kind<S>(parent_set);
 };
 
 /// The children of link L (links whose parent is L), in order.
@@ -133,7 +133,7 @@ FLANGE_INLINE void for_children(F&& f) {
 /// link's root set), typed, in algebra A.
 template <class A, class T, class S, int Set>
 FLANGE_INLINE auto set_rotation(const S& scene) {
-  constexpr int kind = S::tree.set_rotation[Set];
+  constexpr int kind = set_rotation_kind<S>(Set);
   if constexpr (kind == -2) {
     return identity_rotation{};
   } else if constexpr (kind >= 0) {
@@ -194,19 +194,37 @@ struct link_motion {
   }
 };
 
+/// Link L's joint's motion at q: in the joint's axis frame where the link
+/// computes in it (axis_frames.hpp), else in the joint's own frames.
+template <class T, int L, bool NeedRotation, class S>
+FLANGE_INLINE auto link_joint_motion(const S& scene, const T* q) {
+  using LI = link_info<S, L>;
+  const auto& joint = scene.template component<LI::joint>();
+  if constexpr (axis_framed<S, L>) return joint.template motion_in_axis_frame<T, LI::dir, NeedRotation>(q + LI::q);
+  else return joint.template motion<T, LI::dir, NeedRotation>(q + LI::q);
+}
+
 template <class A, class T, int L, bool NeedRotation, class S>
 FLANGE_INLINE auto make_link_motion(const S& scene, const T* q) {
   using LI = link_info<S, L>;
-  const auto& joint = scene.template component<LI::joint>();
-  auto jm = joint.template motion<T, LI::dir, NeedRotation>(q + LI::q);
-  auto Es = set_rotation<A, T, S, LI::parent_set>(scene);
-  auto p = set_offset<A, T, S, LI::parent_set>(scene) + rot_t(Es, jm.p);
-  using M = link_motion<decltype(jm), decltype(Es), decltype(p)>;
-  if constexpr (is_identity_rotation<decltype(Es)>) {
-    return M{std::move(jm), Es, {}, p};
-  } else {
+  auto jm = link_joint_motion<T, L, NeedRotation>(scene, q);
+  if constexpr (axis_framed<S, L>) {
+    // The joint about z in the link's axis frame, after C_L (axis_frames.hpp).
+    auto Es = Mat3<T>(scene.model().link_turn[L].template cast<T>());
+    auto p = set_offset<A, T, S, LI::parent_set>(scene) + rot_t(Es, jm.p);
     auto E = compose(jm.E, Es);
-    return M{std::move(jm), Es, E, p};
+    return link_motion<decltype(jm), decltype(Es), decltype(p)>{std::move(jm), Es, E, p};
+  }
+  else {
+    auto Es = set_rotation<A, T, S, LI::parent_set>(scene);
+    auto p = set_offset<A, T, S, LI::parent_set>(scene) + rot_t(Es, jm.p);
+    using M = link_motion<decltype(jm), decltype(Es), decltype(p)>;
+    if constexpr (is_identity_rotation<decltype(Es)>) {
+      return M{std::move(jm), Es, {}, p};
+    } else {
+      auto E = compose(jm.E, Es);
+      return M{std::move(jm), Es, E, p};
+    }
   }
 }
 
@@ -246,8 +264,7 @@ constexpr bool need_rotation() {
   if constexpr (LI::parent != 0 || HasPositionPass || S::has_gravity) {
     return true;
   } else {
-    using JM = decltype(std::declval<const typename LI::joint_type&>().template motion<double, LI::dir, true>(
-        static_cast<const double*>(nullptr)));
+    using JM = decltype(link_joint_motion<double, L, true>(std::declval<const S&>(), static_cast<const double*>(nullptr)));
     using Bias = decltype(std::declval<const JM&>().pd_bias(static_cast<const double*>(nullptr)));
     return !is_zero_vec<Bias>;
   }

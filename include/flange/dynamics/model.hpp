@@ -14,6 +14,7 @@
 
 #include "flange/core/component.hpp"
 #include "flange/core/joint.hpp"
+#include "flange/dynamics/axis_frames.hpp"
 #include "flange/dynamics/ldlt.hpp"
 #include "flange/math/rotation.hpp"
 
@@ -80,12 +81,17 @@ constexpr int constant_mass_offset() {
 }
 
 struct no_constant_mass {};
+struct no_link_turn {};
 
-template <int NL, int NS, int NB = 0>
+template <int NL, int NS, int NB = 0, bool Turned = false>
 struct dynamics_model {
   std::array<Vec3d, NS> set_offset{};    ///< a set's origin in its link's coordinates
   std::array<Mat3d, NS> set_rotation{};  ///< rotates link coordinates into the set's
   std::array<rigid_inertia<double>, NL> link{};
+  /// C_L = A_L·R_s of a link that computes in its joint's axis frame
+  /// (axis_frames.hpp): its motion is E = R_z(q)·C_L. Not kept by a scene
+  /// without such links.
+  [[no_unique_address]] std::conditional_t<Turned, std::array<Mat3d, NL>, no_link_turn> link_turn{};
   /// A constant M's inverse, link by link (its diagonal blocks), and its
   /// failed pivot if it is singular: the derivative reports that with the
   /// time and state of the call, as for any singular M.
@@ -96,7 +102,8 @@ struct dynamics_model {
 /// The model of scene S.
 template <class S>
 using model_for = dynamics_model<S::tree.n_links, (S::topology.n_sets == 0 ? 1 : S::topology.n_sets),
-                                 constant_mass_matrix<S>() ? constant_mass_offset<S, S::tree.n_links>() : 0>;
+                                 constant_mass_matrix<S>() ? constant_mass_offset<S, S::tree.n_links>() : 0,
+                                 axis_frames<S>::any>;
 
 template <class S, class F>
 void for_each_component(const S& scene, F&& f) {
@@ -150,6 +157,18 @@ auto build_model(const S& scene) {
       }
     });
     const double mass_scale = std::max(1.0, total_mass);
+    // A link computing in its joint's axis frame: its root set (the joint's
+    // child-side frame) is turned by A_Lᵀ against it, and so is every set the
+    // walk below reaches from there.
+    if constexpr (axis_frames<S>::any) {
+      for (int L = 1; L < tree.n_links; ++L) {
+        if (!axis_frames<S>::turned[L]) continue;
+        visit_component(scene, tree.link_joint[L], [&](const auto& j) FLANGE_INLINE_LAMBDA {
+          if constexpr (axis_framed_joint<std::remove_cvref_t<decltype(j)>>)
+            model.set_rotation[tree.link_root_set[L]] = axis_frame_rotation(j.n()).transpose();
+        });
+      }
+    }
     // Sets in breadth-first order: a set's parent is placed before it. A rigid
     // edge gives frame_b's pose in frame_a; walked from frame_b, its inverse.
     for (int i = 0; i < tree.n_tree_sets; ++i) {
@@ -174,6 +193,12 @@ auto build_model(const S& scene) {
         throw parameter_error(concat(describe_component(scene, tree.set_edge[s]), ": it places a frame at [",
                                      p.transpose(), "] m from its link's origin, where mass times length squared (",
                                      mass_scale, " kg · |p|²) overflows the dynamics; rescale the scene's units"));
+    }
+    if constexpr (axis_frames<S>::any) {
+      for (int L = 1; L < tree.n_links; ++L)
+        if (axis_frames<S>::turned[L])
+          model.link_turn[L] =
+              model.set_rotation[tree.link_root_set[L]].transpose() * model.set_rotation[tree.link_parent_set[L]];
     }
     for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
       using C = std::remove_cvref_t<decltype(c)>;

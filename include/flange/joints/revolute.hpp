@@ -220,22 +220,23 @@ class Revolute {
   /// coordinate-axis rotation are not computed (nothing will apply it).
   template <class T, int Dir, bool NeedRotation>
   [[nodiscard]] FLANGE_INLINE auto motion(const T* q) const {
-    detail::revolute_motion<T, Axis, Dir> m;
     if constexpr (Axis::fixed) {
-      if constexpr (NeedRotation) {
-        using std::cos;
-        using std::sin;
-        m.E.c = cos(q[0]);
-        m.E.s = Dir > 0 ? sin(q[0]) : -sin(q[0]);
-      } else {
-        m.E.c = T(1);  // never applied (links.hpp: need_rotation)
-        m.E.s = T(0);
-      }
+      return coordinate_motion<T, Axis, Dir, NeedRotation>(q[0]);
     } else {
+      detail::revolute_motion<T, Axis, Dir> m;
       m.n_ = axis::signed_unit<T, Axis, Dir>(n_);
       m.E = axis_rotation<T>(m.n_.dense(), q[0]);
+      return m;
     }
-    return m;
+  }
+  /// A run-time axis lets its link compute in coordinates turned so that n
+  /// is z (dynamics/axis_frames.hpp, core/joint.hpp): there the motion is
+  /// that of a Revolute about z, a 2-D rotation and S = (±e_z, 0).
+  static constexpr bool axis_frame = !Axis::fixed;
+  template <class T, int Dir, bool NeedRotation>
+    requires(!Axis::fixed)
+  [[nodiscard]] FLANGE_INLINE auto motion_in_axis_frame(const T* q) const {
+    return coordinate_motion<T, axis::z, Dir, NeedRotation>(q[0]);
   }
   template <class T>
   void qdot(const T*, const T* v, T* qd) const {
@@ -328,6 +329,21 @@ class Revolute {
     } else {
       return eq(zero<shape::scalar>{}, dot(M_<1>, n));
     }
+  }
+
+  template <class T, class A, int Dir, bool NeedRotation>
+  FLANGE_INLINE static detail::revolute_motion<T, A, Dir> coordinate_motion(const T& phi) {
+    detail::revolute_motion<T, A, Dir> m;
+    if constexpr (NeedRotation) {
+      using std::cos;
+      using std::sin;
+      m.E.c = cos(phi);
+      m.E.s = Dir > 0 ? sin(phi) : -sin(phi);
+    } else {
+      m.E.c = T(1);  // never applied (links.hpp: need_rotation)
+      m.E.s = T(0);
+    }
+    return m;
   }
 
   Vec3d n_;

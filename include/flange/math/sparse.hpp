@@ -405,6 +405,14 @@ struct rotation_scalar<Eigen::Matrix<T, 3, 3>> {
 };
 template <class A, class B>
 inline constexpr bool same_axis_rotation = false;
+template <class A>
+inline constexpr bool is_coordinate_rotation = false;
+template <class T, int I>
+inline constexpr bool is_coordinate_rotation<coordinate_rotation<T, I>> = true;
+template <class A>
+inline constexpr bool is_dense_rotation = false;
+template <class T>
+inline constexpr bool is_dense_rotation<Eigen::Matrix<T, 3, 3>> = true;
 template <class T, int I>
 inline constexpr bool same_axis_rotation<coordinate_rotation<T, I>, coordinate_rotation<T, I>> = true;
 }  // namespace detail
@@ -420,6 +428,17 @@ FLANGE_INLINE auto compose(const A& a, const B& b) {
     return b;
   } else if constexpr (detail::same_axis_rotation<A, B>) {
     return A{a.c * b.c - a.s * b.s, a.s * b.c + a.c * b.s};
+  } else if constexpr (detail::is_coordinate_rotation<A> && detail::is_dense_rotation<B>) {
+    // A turns rows j and k of B and keeps row I: 12 products, not 27.
+    using T = typename detail::rotation_scalar<A>::type;
+    constexpr int I = A::axis, j = A::j, k = A::k;
+    Mat3<T> r;
+    for (int col = 0; col < 3; ++col) {
+      r(I, col) = b(I, col);
+      r(j, col) = a.c * b(j, col) + a.s * b(k, col);
+      r(k, col) = -a.s * b(j, col) + a.c * b(k, col);
+    }
+    return r;
   } else {
     using T = typename detail::rotation_scalar<A>::type;
     return Mat3<T>(to_matrix<T>(a) * to_matrix<T>(b));
