@@ -16,8 +16,10 @@
 //
 // with one set of constants for the spatial algebra and one for the planar,
 // and b and c larger for a link turned by a general rotation than by a
-// typed one. The crossover this gives on chains: 7 links with run-time axes,
-// 12 with coordinate axes, 13 in a plane; the floating legged robot (18
+// typed one (a coordinate rotation, or the product of two that a link in its
+// joint's axis frame turns by: axis_frames.hpp). The crossover this gives on
+// chains: 12 links with coordinate or run-time axes (the latter measured
+// equal at 10), 13 in a plane; the floating legged robot (18
 // rates, branches 3 deep) stays with Newton–Euler. (Measured with
 // tools/chain_counts.sh; beyond about 8 links Newton–Euler costs more per
 // link than the model says, as its unrolled code outgrows the instruction

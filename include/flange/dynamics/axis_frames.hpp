@@ -70,6 +70,18 @@ struct axis_frames {
     }
     return r;
   }();
+  /// Whether link L is its parent's aligned child: both turned, and L the
+  /// first turned child. The parent's x axis is then chosen normal to both
+  /// axes, and L's turn C_L is R_z(θ₀)·R_x(α): E = R_z(q + θ₀)·R_x(α), two
+  /// (c, s) pairs instead of a 3 × 3 matrix (model.hpp).
+  static constexpr std::array<bool, NL> aligned = [] {
+    std::array<bool, NL> r{}, taken{};
+    for (int L = 1; L < NL; ++L) {
+      const int P = S::tree.link_parent[L];
+      if (turned[L] && P > 0 && turned[P] && !taken[P]) r[L] = taken[P] = true;
+    }
+    return r;
+  }();
   static constexpr bool any = [] {
     for (const bool t : turned)
       if (t) return true;
@@ -80,6 +92,14 @@ struct axis_frames {
 /// Whether link L computes in its joint's axis frame.
 template <class S, int L>
 inline constexpr bool axis_framed = axis_frames<S>::turned[L];
+/// Whether its turn is R_z(θ₀)·R_x(α) (axis_frames::aligned).
+template <class S, int L>
+inline constexpr bool axis_aligned = axis_frames<S>::aligned[L];
+
+/// An aligned link's turn: R_x(α) as (cos α, sin α), and θ₀.
+struct axis_alignment {
+  double c = 1, s = 0, offset = 0;
+};
 
 /// The kind of a connection set's rotation relative to its link's
 /// coordinates: −2 none, k about coordinate axis k, −1 any. Every set of a
@@ -90,10 +110,13 @@ constexpr int set_rotation_kind(int set) {
   return L > 0 && axis_frames<S>::turned[L] ? -1 : S::tree.set_rotation[set];
 }
 
-/// A_L for a unit axis n: a rotation with rows x, y, n (A_L·n = e_z).
-inline Mat3d axis_frame_rotation(const Vec3d& n) {
+/// A_L for a unit axis n: a rotation with rows x, y, n (A_L·n = e_z), and x
+/// normal to m (the aligned child's axis) where the two axes are not
+/// parallel.
+inline Mat3d axis_frame_rotation(const Vec3d& n, const Vec3d& m = Vec3d::Zero()) {
   const Vec3d a = std::abs(n.x()) < 0.9 ? Vec3d::UnitX() : Vec3d::UnitY();
-  const Vec3d x = (a - a.dot(n) * n).normalized();
+  const Vec3d nm = n.cross(m);
+  const Vec3d x = nm.norm() > 1e-9 ? Vec3d(nm.normalized()) : Vec3d((a - a.dot(n) * n).normalized());
   Mat3d A;
   A.row(0) = x.transpose();
   A.row(1) = n.cross(x).transpose();

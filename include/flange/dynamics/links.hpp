@@ -194,37 +194,39 @@ struct link_motion {
   }
 };
 
-/// Link L's joint's motion at q: in the joint's axis frame where the link
-/// computes in it (axis_frames.hpp), else in the joint's own frames.
-template <class T, int L, bool NeedRotation, class S>
-FLANGE_INLINE auto link_joint_motion(const S& scene, const T* q) {
-  using LI = link_info<S, L>;
-  const auto& joint = scene.template component<LI::joint>();
-  if constexpr (axis_framed<S, L>) return joint.template motion_in_axis_frame<T, LI::dir, NeedRotation>(q + LI::q);
-  else return joint.template motion<T, LI::dir, NeedRotation>(q + LI::q);
+/// A link's motion from its joint's motion jm and the rotation Es of what the
+/// joint hangs on, in the coordinates the link computes in.
+template <class A, class T, int L, class S, class JM, class ES>
+FLANGE_INLINE auto link_motion_of(const S& scene, JM jm, ES Es) {
+  auto p = set_offset<A, T, S, link_info<S, L>::parent_set>(scene) + rot_t(Es, jm.p);
+  using M = link_motion<JM, ES, decltype(p)>;
+  if constexpr (is_identity_rotation<ES>) {
+    return M{std::move(jm), Es, {}, p};
+  } else {
+    auto E = compose(jm.E, Es);
+    return M{std::move(jm), Es, E, p};
+  }
 }
 
+/// Link L's motion at q: its joint's motion after the rotation of the frame
+/// it hangs on; in the joint's axis frame, after the turn C_L, where the link
+/// computes in it (axis_frames.hpp), as R_x(α) with the joint turned by θ₀
+/// where the link is aligned with its parent.
 template <class A, class T, int L, bool NeedRotation, class S>
 FLANGE_INLINE auto make_link_motion(const S& scene, const T* q) {
   using LI = link_info<S, L>;
-  auto jm = link_joint_motion<T, L, NeedRotation>(scene, q);
-  if constexpr (axis_framed<S, L>) {
-    // The joint about z in the link's axis frame, after C_L (axis_frames.hpp).
-    auto Es = Mat3<T>(scene.model().link_turn[L].template cast<T>());
-    auto p = set_offset<A, T, S, LI::parent_set>(scene) + rot_t(Es, jm.p);
-    auto E = compose(jm.E, Es);
-    return link_motion<decltype(jm), decltype(Es), decltype(p)>{std::move(jm), Es, E, p};
-  }
-  else {
-    auto Es = set_rotation<A, T, S, LI::parent_set>(scene);
-    auto p = set_offset<A, T, S, LI::parent_set>(scene) + rot_t(Es, jm.p);
-    using M = link_motion<decltype(jm), decltype(Es), decltype(p)>;
-    if constexpr (is_identity_rotation<decltype(Es)>) {
-      return M{std::move(jm), Es, {}, p};
-    } else {
-      auto E = compose(jm.E, Es);
-      return M{std::move(jm), Es, E, p};
-    }
+  const auto& joint = scene.template component<LI::joint>();
+  if constexpr (axis_aligned<S, L>) {
+    const auto& al = scene.model().link_align[L];
+    return link_motion_of<A, T, L>(
+        scene, joint.template motion_in_axis_frame<T, LI::dir, NeedRotation>(q + LI::q, T(LI::dir * al.offset)),
+        coordinate_rotation<T, 0>{T(al.c), T(al.s)});
+  } else if constexpr (axis_framed<S, L>) {
+    return link_motion_of<A, T, L>(scene, joint.template motion_in_axis_frame<T, LI::dir, NeedRotation>(q + LI::q),
+                                   Mat3<T>(scene.model().link_turn[L].template cast<T>()));
+  } else {
+    return link_motion_of<A, T, L>(scene, joint.template motion<T, LI::dir, NeedRotation>(q + LI::q),
+                                   set_rotation<A, T, S, LI::parent_set>(scene));
   }
 }
 
@@ -264,7 +266,9 @@ constexpr bool need_rotation() {
   if constexpr (LI::parent != 0 || HasPositionPass || S::has_gravity) {
     return true;
   } else {
-    using JM = decltype(link_joint_motion<double, L, true>(std::declval<const S&>(), static_cast<const double*>(nullptr)));
+    using JM = decltype(make_link_motion<spatial_algebra, double, L, true>(std::declval<const S&>(),
+                                                                          static_cast<const double*>(nullptr))
+                            .jm);
     using Bias = decltype(std::declval<const JM&>().pd_bias(static_cast<const double*>(nullptr)));
     return !is_zero_vec<Bias>;
   }

@@ -92,6 +92,8 @@ struct dynamics_model {
   /// (axis_frames.hpp): its motion is E = R_z(q)·C_L. Not kept by a scene
   /// without such links.
   [[no_unique_address]] std::conditional_t<Turned, std::array<Mat3d, NL>, no_link_turn> link_turn{};
+  /// The same for an aligned link, as R_z(θ₀)·R_x(α).
+  [[no_unique_address]] std::conditional_t<Turned, std::array<axis_alignment, NL>, no_link_turn> link_align{};
   /// A constant M's inverse, link by link (its diagonal blocks), and its
   /// failed pivot if it is singular: the derivative reports that with the
   /// time and state of the call, as for any singular M.
@@ -138,6 +140,53 @@ std::string describe_component(const S&, int c) {
   return concat(S::table.type_names[c], " \"", S::table.names[c], "\"");
 }
 
+/// The axis frames (axis_frames.hpp), once the sets' poses in their links'
+/// own coordinates are known: each turned link's A_L (x normal to its aligned
+/// child's axis), every set of it turned by A_L, and each turned link's C_L,
+/// for an aligned one as (α, θ₀).
+template <class S, class Model>
+void turn_to_axis_frames(const S& scene, Model& model) {
+  constexpr auto& tree = S::tree;
+  constexpr auto& frames = axis_frames<S>::turned;
+  constexpr auto& aligned = axis_frames<S>::aligned;
+  std::array<Vec3d, tree.n_links> n;
+  for (int L = 1; L < tree.n_links; ++L)
+    if (frames[L])
+      visit_component(scene, tree.link_joint[L], [&](const auto& j) FLANGE_INLINE_LAMBDA {
+        if constexpr (axis_framed_joint<std::remove_cvref_t<decltype(j)>>) n[L] = j.n();
+      });
+  std::array<Mat3d, tree.n_links> A;
+  for (int L = 1; L < tree.n_links; ++L) {
+    if (!frames[L]) continue;
+    Vec3d m = Vec3d::Zero();  // the aligned child's axis in L's coordinates
+    for (int C = L + 1; C < tree.n_links; ++C)
+      if (aligned[C] && tree.link_parent[C] == L) m = model.set_rotation[tree.link_parent_set[C]].transpose() * n[C];
+    A[L] = axis_frame_rotation(n[L], m);
+  }
+  for (int s = 0; s < int(model.set_rotation.size()); ++s) {
+    const int L = tree.set_link[s];
+    if (L <= 0 || !frames[L]) continue;
+    model.set_rotation[s] = model.set_rotation[s] * A[L].transpose();
+    model.set_offset[s] = A[L] * model.set_offset[s];
+  }
+  for (int L = 1; L < tree.n_links; ++L) {
+    if (!frames[L]) continue;
+    const Mat3d C = A[L] * model.set_rotation[tree.link_parent_set[L]];
+    model.link_turn[L] = C;
+    if (aligned[L]) {
+      // C's last row is (0, −sin α, cos α) (x of the parent is normal to
+      // this axis); C·R_x(α)ᵀ is then R_z(θ₀).
+      auto& a = model.link_align[L];
+      const double r = std::hypot(C(2, 1), C(2, 2));
+      a.c = C(2, 2) / r;
+      a.s = -C(2, 1) / r;
+      const Mat3d Rx = to_matrix<double>(coordinate_rotation<double, 0>{a.c, a.s});
+      const Mat3d Z = C * Rx.transpose();
+      a.offset = std::atan2(Z(0, 1), Z(0, 0));
+    }
+  }
+}
+
 template <class S>
 auto build_model(const S& scene) {
   constexpr auto& tree = S::tree;
@@ -157,18 +206,6 @@ auto build_model(const S& scene) {
       }
     });
     const double mass_scale = std::max(1.0, total_mass);
-    // A link computing in its joint's axis frame: its root set (the joint's
-    // child-side frame) is turned by A_Lᵀ against it, and so is every set the
-    // walk below reaches from there.
-    if constexpr (axis_frames<S>::any) {
-      for (int L = 1; L < tree.n_links; ++L) {
-        if (!axis_frames<S>::turned[L]) continue;
-        visit_component(scene, tree.link_joint[L], [&](const auto& j) FLANGE_INLINE_LAMBDA {
-          if constexpr (axis_framed_joint<std::remove_cvref_t<decltype(j)>>)
-            model.set_rotation[tree.link_root_set[L]] = axis_frame_rotation(j.n()).transpose();
-        });
-      }
-    }
     // Sets in breadth-first order: a set's parent is placed before it. A rigid
     // edge gives frame_b's pose in frame_a; walked from frame_b, its inverse.
     for (int i = 0; i < tree.n_tree_sets; ++i) {
@@ -194,12 +231,7 @@ auto build_model(const S& scene) {
                                      p.transpose(), "] m from its link's origin, where mass times length squared (",
                                      mass_scale, " kg · |p|²) overflows the dynamics; rescale the scene's units"));
     }
-    if constexpr (axis_frames<S>::any) {
-      for (int L = 1; L < tree.n_links; ++L)
-        if (axis_frames<S>::turned[L])
-          model.link_turn[L] =
-              model.set_rotation[tree.link_root_set[L]].transpose() * model.set_rotation[tree.link_parent_set[L]];
-    }
+    if constexpr (axis_frames<S>::any) turn_to_axis_frames(scene, model);
     for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
       using C = std::remove_cvref_t<decltype(c)>;
       if constexpr (carries_body<C>) {

@@ -238,6 +238,13 @@ class Revolute {
   [[nodiscard]] FLANGE_INLINE auto motion_in_axis_frame(const T* q) const {
     return coordinate_motion<T, axis::z, Dir, NeedRotation>(q[0]);
   }
+  /// The same at φ = q[0] + offset: a frame turned about the axis by a
+  /// constant angle against the joint's own (axis_frames.hpp).
+  template <class T, int Dir, bool NeedRotation>
+    requires(!Axis::fixed)
+  [[nodiscard]] FLANGE_INLINE auto motion_in_axis_frame(const T* q, const T& offset) const {
+    return coordinate_motion<T, axis::z, Dir, NeedRotation>(q[0] + offset);
+  }
   template <class T>
   void qdot(const T*, const T* v, T* qd) const {
     qd[0] = v[0];

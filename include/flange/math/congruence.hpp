@@ -25,6 +25,8 @@ FLANGE_INLINE Mat3<T> rotated_back(const E& R, const Mat3<T>& X) {
     return X;
   } else if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) {
     return small::mul(small::mul_tn(R, X), R);
+  } else if constexpr (is_rotation_product<E>) {
+    return rotated_back<T>(R.b, rotated_back<T>(R.a, X));  // (A·B)ᵀ·X·(A·B) = Bᵀ·(Aᵀ·X·A)·B
   } else {
     Mat3<T> A, B;  // A = Eᵀ·X column by column, then B = (A·E)ᵀ = Eᵀ·Aᵀ column by column
     detail::static_for<3>([&](auto k) FLANGE_INLINE_LAMBDA {
@@ -41,11 +43,34 @@ FLANGE_INLINE Mat3<T> rotated_back(const E& R, const Mat3<T>& X) {
   }
 }
 
-/// Eᵀ·X·E for a symmetric X (the result is symmetric).
+/// Eᵀ·X·E for a symmetric X (the result is symmetric). About a coordinate
+/// axis I, with (I, j, k) cyclic, only the entries that turn are computed,
+/// from the upper triangle: 14 products instead of the 24 of turning every
+/// column and row,
+///   Y_II = X_II,  Y_Ij = c·X_Ij − s·X_Ik,  Y_Ik = s·X_Ij + c·X_Ik,
+///   Y_jj = c²·X_jj − 2cs·X_jk + s²·X_kk,  Y_kk = s²·X_jj + 2cs·X_jk + c²·X_kk,
+///   Y_jk = cs·(X_jj − X_kk) + (c² − s²)·X_jk.
 template <class T, class E>
 FLANGE_INLINE Mat3<T> rotated_back_sym(const E& R, const Mat3<T>& X) {
-  if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) return small::congruence_sym(R, X);
-  else return rotated_back<T>(R, X);
+  if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) {
+    return small::congruence_sym(R, X);
+  } else if constexpr (is_rotation_product<E>) {
+    return rotated_back_sym<T>(R.b, rotated_back_sym<T>(R.a, X));
+  } else if constexpr (requires { E::axis; }) {
+    constexpr int I = E::axis, j = E::j, k = E::k;
+    const T cc = R.c * R.c, ss = R.s * R.s, cs = R.c * R.s;
+    const T t = T(2) * cs * X(j, k);
+    Mat3<T> Y;
+    Y(I, I) = X(I, I);
+    Y(I, j) = Y(j, I) = R.c * X(I, j) - R.s * X(I, k);
+    Y(I, k) = Y(k, I) = R.s * X(I, j) + R.c * X(I, k);
+    Y(j, j) = cc * X(j, j) - t + ss * X(k, k);
+    Y(k, k) = ss * X(j, j) + t + cc * X(k, k);
+    Y(j, k) = Y(k, j) = cs * (X(j, j) - X(k, k)) + (cc - ss) * X(j, k);
+    return Y;
+  } else {
+    return rotated_back<T>(R, X);
+  }
 }
 
 /// The same for a general E applied to X's columns and then to the rows of
@@ -63,7 +88,7 @@ FLANGE_INLINE Mat3<T> rotated_back_sym_by_columns(const E& R, const Mat3<T>& X) 
     for (int k = 0; k < 3; ++k) B.col(k) = rot_t(R, to_svec(Vec3<T>(A.row(k).transpose()))).dense();
     return B.transpose();
   } else {
-    return rotated_back<T>(R, X);
+    return rotated_back_sym<T>(R, X);
   }
 }
 

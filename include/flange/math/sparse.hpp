@@ -301,6 +301,20 @@ struct coordinate_rotation {
 template <class E>
 inline constexpr bool is_identity_rotation = std::is_same_v<std::remove_cvref_t<E>, identity_rotation>;
 
+/// A·B of two coordinate rotations about different axes: first B, then A,
+/// each applied as its (c, s) pair (4 products a vector against a 3 × 3
+/// matrix's 9 in all). An axis frame's E = R_z(q)·R_x(α) is one
+/// (dynamics/axis_frames.hpp).
+template <class A, class B>
+struct rotation_product {
+  A a;
+  B b;
+};
+template <class E>
+inline constexpr bool is_rotation_product = false;
+template <class A, class B>
+inline constexpr bool is_rotation_product<rotation_product<A, B>> = true;
+
 namespace detail {
 /// Components a rotation about axis I fills from mask M.
 constexpr int axis_rotation_mask(int I, int M) {
@@ -357,6 +371,10 @@ template <class T, int M>
 FLANGE_INLINE svec<T, (M == 0 ? 0 : 7)> rot(const Mat3<T>& E, const svec<T, M>& v) {
   return dense_times<false>(E, v);
 }
+template <class A, class B, class T, int M>
+FLANGE_INLINE auto rot(const rotation_product<A, B>& E, const svec<T, M>& v) {
+  return rot(E.a, rot(E.b, v));
+}
 /// Eᵀ·v (child coordinates back into parent coordinates).
 template <class T, int M>
 FLANGE_INLINE svec<T, M> rot_t(identity_rotation, const svec<T, M>& v) {
@@ -369,6 +387,10 @@ FLANGE_INLINE svec<T, detail::axis_rotation_mask(I, M)> rot_t(const coordinate_r
 template <class T, int M>
 FLANGE_INLINE svec<T, (M == 0 ? 0 : 7)> rot_t(const Mat3<T>& E, const svec<T, M>& v) {
   return dense_times<true>(E, v);
+}
+template <class A, class B, class T, int M>
+FLANGE_INLINE auto rot_t(const rotation_product<A, B>& E, const svec<T, M>& v) {
+  return rot_t(E.b, rot_t(E.a, v));
 }
 
 /// The rotation as a dense matrix.
@@ -391,6 +413,10 @@ template <class T>
 FLANGE_INLINE const Mat3<T>& to_matrix(const Mat3<T>& E) {
   return E;
 }
+template <class T, class A, class B>
+FLANGE_INLINE Mat3<T> to_matrix(const rotation_product<A, B>& E) {
+  return to_matrix<T>(E.a) * to_matrix<T>(E.b);
+}
 
 namespace detail {
 template <class E>
@@ -402,6 +428,10 @@ struct rotation_scalar<coordinate_rotation<T, I>> {
 template <class T>
 struct rotation_scalar<Eigen::Matrix<T, 3, 3>> {
   using type = T;
+};
+template <class A, class B>
+struct rotation_scalar<rotation_product<A, B>> {
+  using type = typename rotation_scalar<A>::type;
 };
 template <class A, class B>
 inline constexpr bool same_axis_rotation = false;
@@ -428,6 +458,8 @@ FLANGE_INLINE auto compose(const A& a, const B& b) {
     return b;
   } else if constexpr (detail::same_axis_rotation<A, B>) {
     return A{a.c * b.c - a.s * b.s, a.s * b.c + a.c * b.s};
+  } else if constexpr (detail::is_coordinate_rotation<A> && detail::is_coordinate_rotation<B>) {
+    return rotation_product<A, B>{a, b};
   } else if constexpr (detail::is_coordinate_rotation<A> && detail::is_dense_rotation<B>) {
     // A turns rows j and k of B and keeps row I: 12 products, not 27.
     using T = typename detail::rotation_scalar<A>::type;
@@ -454,6 +486,10 @@ FLANGE_INLINE coordinate_rotation<T, I> transpose(const coordinate_rotation<T, I
 template <class T>
 FLANGE_INLINE Mat3<T> transpose(const Mat3<T>& E) {
   return E.transpose();
+}
+template <class A, class B>
+FLANGE_INLINE auto transpose(const rotation_product<A, B>& E) {
+  return rotation_product<decltype(transpose(E.b)), decltype(transpose(E.a))>{transpose(E.b), transpose(E.a)};
 }
 
 // ------------------------------------------------------------ rotational inertias
