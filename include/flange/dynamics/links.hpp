@@ -216,17 +216,20 @@ template <class A, class T, int L, bool NeedRotation, class S>
 FLANGE_INLINE auto make_link_motion(const S& scene, const T* q) {
   using LI = link_info<S, L>;
   const auto& joint = scene.template component<LI::joint>();
+  // The joint's motion first, in a statement of its own: its sine and cosine
+  // are a call, and GCC evaluates a call's arguments right to left, so a
+  // rotation passed beside it would be loaded before the call and kept across
+  // it (the arm with a run-time axis: 204 instructions against 192).
   if constexpr (axis_aligned<S, L>) {
     const auto& al = scene.model().link_align[L];
-    return link_motion_of<A, T, L>(
-        scene, joint.template motion_in_axis_frame<T, LI::dir, NeedRotation>(q + LI::q, T(LI::dir * al.offset)),
-        coordinate_rotation<T, 0>{T(al.c), T(al.s)});
+    auto jm = joint.template motion_in_axis_frame<T, LI::dir, NeedRotation>(q + LI::q, T(LI::dir * al.offset));
+    return link_motion_of<A, T, L>(scene, std::move(jm), coordinate_rotation<T, 0>{T(al.c), T(al.s)});
   } else if constexpr (axis_framed<S, L>) {
-    return link_motion_of<A, T, L>(scene, joint.template motion_in_axis_frame<T, LI::dir, NeedRotation>(q + LI::q),
-                                   Mat3<T>(scene.model().link_turn[L].template cast<T>()));
+    auto jm = joint.template motion_in_axis_frame<T, LI::dir, NeedRotation>(q + LI::q);
+    return link_motion_of<A, T, L>(scene, std::move(jm), Mat3<T>(scene.model().link_turn[L].template cast<T>()));
   } else {
-    return link_motion_of<A, T, L>(scene, joint.template motion<T, LI::dir, NeedRotation>(q + LI::q),
-                                   set_rotation<A, T, S, LI::parent_set>(scene));
+    auto jm = joint.template motion<T, LI::dir, NeedRotation>(q + LI::q);
+    return link_motion_of<A, T, L>(scene, std::move(jm), set_rotation<A, T, S, LI::parent_set>(scene));
   }
 }
 
