@@ -4,6 +4,8 @@
 
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
+#include <flange/detail/static_for.hpp>
+#include <flange/math/congruence.hpp>
 #include <flange/math/rotation.hpp>
 
 using namespace flange;
@@ -85,5 +87,37 @@ TEST_CASE("the orientation residue is zero for equal rotations and the small ang
       const Vec3d r = orientation_residue<double>(axis_rotation<double>(Vec3d::Unit(k), delta) * R, R);
       CHECK((r + delta * Vec3d::Unit(k)).cwiseAbs().maxCoeff() < delta * delta);
     }
+  }
+}
+
+// Eᵀ·X·E for the typed rotations an axis frame turns by (math/congruence.hpp):
+// a (c, s) pair about each coordinate axis, and the product R_z·R_x of two,
+// against dense products with Eigen's AngleAxis (a coordinate rotation is the
+// transpose of the active one). The symmetric form computes 6 entries of the
+// upper triangle from X's upper triangle; the general one every entry.
+TEST_CASE("congruence by coordinate rotations and their products equals the dense Eᵀ·X·E") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 50; ++trial) {
+    Mat3d G;
+    for (int i = 0; i < 9; ++i) G.data()[i] = u(rng);
+    const Mat3d X = G + G.transpose();
+    const double a = 3 * u(rng), b = 3 * u(rng);
+    const auto passive = [](double phi, int axis) -> Mat3d {
+      return Eigen::AngleAxisd(phi, Vec3d::Unit(axis)).toRotationMatrix().transpose();
+    };
+    const auto near = [](const Mat3d& y, const Mat3d& ref) { return (y - ref).cwiseAbs().maxCoeff() <= 1e-14; };
+    flange::detail::static_for<3>([&](auto I) {
+      const flange::coordinate_rotation<double, I> E{std::cos(a), std::sin(a)};
+      const Mat3d D = passive(a, I);
+      CHECK(near(flange::rotated_back_sym<double>(E, X), D.transpose() * X * D));
+      CHECK(near(flange::rotated_back<double>(E, G), D.transpose() * G * D));
+    });
+    const flange::rotation_product<flange::coordinate_rotation<double, 2>, flange::coordinate_rotation<double, 0>> P{
+        {std::cos(a), std::sin(a)}, {std::cos(b), std::sin(b)}};
+    const Mat3d D = passive(a, 2) * passive(b, 0);
+    CHECK(near(flange::rotated_back_sym<double>(P, X), D.transpose() * X * D));
+    CHECK(near(flange::rotated_back<double>(P, G), D.transpose() * G * D));
+    CHECK(near(flange::to_matrix<double>(P), D));
   }
 }
