@@ -1,7 +1,8 @@
 // The mass matrix read off the kinetic energy: T = ½·vᵀ·M(q)·v, so column j
 // of M is ∂T/∂v at v = e_j, which dual numbers (math/dual.hpp) carry exactly
-// through recover() (dynamics/recover.hpp). It costs n_v·⌈n_v/4⌉ recoveries: a
-// check, not a fast path. It shares no code with the composite-rigid-body pass the
+// through energy() (dynamics/energy.hpp: the pose pass and the bodies'
+// velocities, no dynamics). It costs n_v·⌈n_v/4⌉ of those: a check, not a
+// fast path. It shares no code with the composite-rigid-body pass the
 // derivative uses (dynamics/mass_matrix.hpp), so the tests and the fuzz
 // target use it as a second algorithm, and to judge how well conditioned a
 // state is before they compare two algorithms there.
@@ -14,14 +15,14 @@
 #include <array>
 #include <limits>
 
-#include "flange/dynamics/recover.hpp"
+#include "flange/dynamics/energy.hpp"
 #include "flange/math/dual.hpp"
 
 namespace flange {
 
 /// M(q) at the coordinates of state x (its rates are not used). The
-/// derivatives are taken K = 4 directions at a time (dual<double, 4>), so a
-/// recovery's variables stay a few kB whatever the scene's size.
+/// derivatives are taken K = 4 directions at a time (dual<double, 4>), so an
+/// evaluation's variables stay a few kB whatever the scene's size.
 template <class S, class State>
 Eigen::Matrix<double, S::n_v, S::n_v> energy_mass_matrix(const S& scene, const State& x) {
   constexpr int NQ = S::n_q, NV = S::n_v, K = NV < 4 ? NV : 4;
@@ -33,8 +34,8 @@ Eigen::Matrix<double, S::n_v, S::n_v> energy_mass_matrix(const S& scene, const S
       for (int i = 0; i < NQ; ++i) xd[i] = D(static_cast<double>(x[i]));
       for (int i = 0; i < NV; ++i) xd[NQ + i] = D(i == j ? 1.0 : 0.0);
       for (int k = 0; k < K && i0 + k < NV; ++k) xd[NQ + i0 + k].d[k] = 1;  // ∂/∂v_(i0+k)
-      const auto sol = recover(scene, D(0.0), xd);
-      for (int k = 0; k < K && i0 + k < NV; ++k) M(i0 + k, j) = sol.kinetic.d[k];
+      const auto e = energy(scene, D(0.0), xd);
+      for (int k = 0; k < K && i0 + k < NV; ++k) M(i0 + k, j) = e.kinetic.d[k];
     }
   return M;
 }

@@ -21,6 +21,7 @@
 
 #include "flange/core/frame_kinematics.hpp"
 #include "flange/dynamics/algorithm.hpp"
+#include "flange/dynamics/energy.hpp"
 #include "flange/dynamics/kinematics.hpp"
 #include "flange/equations/residual.hpp"
 #include "flange/scene/joint_check.hpp"
@@ -224,20 +225,18 @@ template <class S, class T = double, class State>
     detail::walk<S, 0>(ctx, detail::base_kinematics<spatial_algebra, T>(scene));
   }
 
-  // Frames: a frame sits at its set's constant pose in its link.
+  // Frames: a frame sits at its set's constant pose in its link (its pose
+  // and velocity as energy() has them, energy.hpp).
   for (int f = 0; f < NF; ++f) {
+    auto& k = sol.frames[f];
+    detail::frame_pose_and_velocity(scene, lk, f, k);
     const int s = topo.set_of[f];
     const int l = tree.set_link[s];
     const auto& L = lk[l];
     const Vec3<T> p = scene.model().set_offset[s].template cast<T>();
     const Mat3<T> Rs = scene.model().set_rotation[s].template cast<T>();
     const Vec3<T> al = L.R.transpose() * a[l] + g;  // the link origin's acceleration, world coordinates
-    auto& k = sol.frames[f];
-    k.R = Rs * L.R;
-    k.w = Rs * L.w;
     k.wd = Rs * wd[l];
-    k.r = L.r + L.R.transpose() * p;
-    k.v = L.v + L.R.transpose() * L.w.cross(p);
     k.a = al + L.R.transpose() * (wd[l].cross(p) + L.w.cross(L.w.cross(p)));
   }
 
@@ -338,7 +337,6 @@ template <class S, class T = double, class State>
     sol.yd.template segment<3>(S::frame_offset(f, 0)) = k.v;
     Eigen::Map<Mat3<T>>(sol.yd.data() + S::frame_offset(f, 1)) = -tilde<T>(k.w) * k.R;
   }
-  sol.kinetic = sol.gravity_potential = sol.elastic_potential = T(0);
   detail::for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
     using C = std::remove_cvref_t<decltype(c)>;
     constexpr int I = decltype(i)::value;
@@ -363,7 +361,6 @@ template <class S, class T = double, class State>
       const T* q = sol.q.data() + tree.q_offset[I];
       const T* v = sol.v.data() + tree.v_offset[I];
       c.write_internals(q, v, set);
-      if constexpr (requires { c.elastic_energy(q); }) sol.elastic_potential += c.elastic_energy(q);
     } else if constexpr (C::kind == role::joint) {
       // A cut joint: its coordinates from its frames, as it would have them.
       const auto& a = sol.frames[tab.frame_base[I]];
@@ -383,19 +380,16 @@ template <class S, class T = double, class State>
       const auto iv = c.internal_values(t, js, &sol.frames[tab.frame_base[I]]);
       for (int k = 0; k < int(iv.size()); ++k) set(k, iv[k].first, iv[k].second);
     }
-    if constexpr (requires { c.potential_energy(t, js, &sol.frames[0]); })
-      sol.elastic_potential += c.potential_energy(t, js, &sol.frames[tab.frame_base[I]]);
     if constexpr (carries_body<C>) {
       const auto& k = sol.frames[tab.frame_base[I]];
       set(0, k.v, k.a);   // v
       set(1, k.w, k.wd);  // ω
-      const Vec3<T> cm = c.r_cm().template cast<T>();
-      const Vec3<T> vcm = k.v + k.R.transpose() * k.w.cross(cm);
-      const T m = T(c.m());
-      sol.kinetic += T(0.5) * m * vcm.squaredNorm() + T(0.5) * k.w.dot(c.J().template cast<T>() * k.w);
-      sol.gravity_potential -= m * g.dot(k.r + k.R.transpose() * cm);
     }
   });
+  const auto e = detail::energy_of(scene, t, js, sol.q.data(), sol.frames.data());
+  sol.kinetic = e.kinetic;
+  sol.gravity_potential = e.gravity_potential;
+  sol.elastic_potential = e.elastic_potential;
   return sol;
 }
 
