@@ -1,5 +1,6 @@
 # Runs one half of a compile-fail pair.
-#   MODE=ok: SRC must compile.
+#   MODE=ok: SRC must compile (the ok halves, all in one generated source:
+#            tests/CMakeLists.txt).
 #   MODE=ko: SRC with -DFLANGE_KO must fail, and the compiler output must
 #            contain every string in EXPECT (the diagnostic and its culprit),
 #            with exactly one error line and at most 25 lines in all.
