@@ -61,20 +61,18 @@ inline constexpr auto internal_names = [] {
 }();
 }  // namespace detail
 
+/// Every variable of the DAE at one instant, with the energies
+/// (energy_terms: kinetic, gravity_potential, elastic_potential).
 template <class S, class T>
-struct dae_solution {
+struct dae_solution : energy_terms<T> {
   T t{};
   dae_vector<S, T> y, yd;  ///< every DAE variable, and the derivatives the equations use
   std::array<T, S::n_q> q{};                            ///< joint coordinates
   std::array<T, S::n_v> v{}, vdot{};                    ///< joint rates and their derivatives
   std::array<frame_kinematics<T>, S::n_frames> frames;  ///< by global frame index
   std::array<wrench<T>, S::n_frames> cut;               ///< F and M at each frame (frame coordinates)
-  T kinetic{};            ///< kinetic energy of every body
-  T gravity_potential{};  ///< −Σ m·g·r_CM
-  T elastic_potential{};  ///< every spring's: line springs and joint springs
-
-  [[nodiscard]] T potential() const { return gravity_potential + elastic_potential; }
-  [[nodiscard]] T energy() const { return kinetic + potential(); }
+  /// Kinetic and potential energy together (energy_terms::total()).
+  [[nodiscard]] T energy() const { return this->total(); }
   /// The frame named "component.frame". On a temporary solution
   /// (recover(…).frame(…)) a copy, so that `const auto& f = recover(…).frame(…)`
   /// does not dangle (AddressSanitizer found one in a test).
@@ -386,10 +384,7 @@ template <class S, class T = double, class State>
       set(1, k.w, k.wd);  // ω
     }
   });
-  const auto e = detail::energy_of(scene, t, js, sol.q.data(), sol.frames.data());
-  sol.kinetic = e.kinetic;
-  sol.gravity_potential = e.gravity_potential;
-  sol.elastic_potential = e.elastic_potential;
+  static_cast<energy_terms<T>&>(sol) = detail::energy_of(scene, t, js, sol.q.data(), sol.frames.data());
   return sol;
 }
 
