@@ -1,5 +1,5 @@
-// Simbody on the paper's robot arm and gantry crane, a free body, and a
-// four-bar (a closed loop: a Ball constraint, projected by Simbody), measured the way
+// Simbody on the paper's robot arm and gantry crane, a free body, a
+// floating-base robot with four legs, and a four-bar (a closed loop: a Ball constraint, projected by Simbody), measured the way
 // benchmarks/work_precision.cpp measures flange: the scaled error at T against
 // flange's long-double reference, and the median wall time per simulated
 // second, over a sweep of accuracies for each of Simbody's integrators.
@@ -39,15 +39,41 @@ void study(const std::string& name, const peer::reference& ref, bool quick) {
   GeneralForceSubsystem forces(system);
   Force::UniformGravity gravity(forces, matter, Vec3(0, -peer::g, 0));
   std::vector<MobilizedBody> joints;
-  // A free body's state is not one q and one u per joint (below).
+  // A free base's state is not one q and one u per joint (below).
   std::unique_ptr<MobilizedBody::Free> free;
+  auto free_base = [&](const MassProperties& mp) {
+    free = std::make_unique<MobilizedBody::Free>(matter.Ground(), Transform(), Body::Rigid(mp), Transform());
+  };
   if (name == "free_body") {
     const Vec3 c(peer::free_cm, 0, 0);
-    const Body::Rigid body(MassProperties(
+    free_base(MassProperties(
         peer::free_m, c,
         Inertia(Vec3(peer::free_J[0], peer::free_J[1], peer::free_J[2])).shiftFromMassCenter(-c, peer::free_m)));
-    free = std::make_unique<MobilizedBody::Free>(matter.Ground(), Transform(), body, Transform());
-  } else if (name == "robot_arm") {
+  } else if (name == "legged") {
+    // models::legged<4, 3>(): the trunk on the Free mobilizer; per leg a Pin
+    // at the hip about y, then two about x, each link's body at its joint
+    // with its centre of mass at mid-link. A Pin turns about its frames' z,
+    // so both of its frames are turned to bring z onto the joint's axis.
+    free_base(MassProperties(peer::legged_trunk_m, Vec3(0),
+                             Inertia(Vec3(peer::legged_trunk_J[0], peer::legged_trunk_J[1], peer::legged_trunk_J[2]))));
+    const Vec3 c(0, -0.5 * peer::legged_link_L, 0);
+    const Body::Rigid link(MassProperties(
+        peer::legged_link_m, c,
+        Inertia(Vec3(peer::legged_link_J[0], peer::legged_link_J[1], peer::legged_link_J[2]))
+            .shiftFromMassCenter(-c, peer::legged_link_m)));
+    const Rotation z_to_y(-Pi / 2, XAxis), z_to_x(Pi / 2, YAxis);
+    for (int k = 0; k < 4; ++k) {
+      const double sx = (k % 2 ? -1 : 1) * peer::legged_hip_x, sz = (k / 2 ? -1 : 1) * peer::legged_hip_z;
+      MobilizedBody parent = *free;
+      for (int j = 0; j < 3; ++j) {
+        const Rotation& R = j == 0 ? z_to_y : z_to_x;
+        const Vec3 at = j == 0 ? Vec3(sx, 0, sz) : Vec3(0, -peer::legged_link_L, 0);
+        MobilizedBody::Pin pin(parent, Transform(R, at), link, Transform(R));
+        joints.push_back(pin);
+        parent = pin;
+      }
+    }
+    } else if (name == "robot_arm") {
     const Vec3 c(peer::arm_d, 0, 0);
     const Body::Rigid body(MassProperties(
         peer::arm_m, c, Inertia(Vec3(peer::arm_Jx, peer::arm_Jz, peer::arm_Jz)).shiftFromMassCenter(-c, peer::arm_m)));
@@ -77,35 +103,42 @@ void study(const std::string& name, const peer::reference& ref, bool quick) {
     joints.push_back(MobilizedBody::Pin(rail, Transform(), load, Transform()));
   }
   system.realizeTopology();
-  const int nq = static_cast<int>(joints.size());
+  // flange's state: q = (the free base's 7, one per joint), then v = (the
+  // free base's 6, one per joint). A free base's q is (r, Qx, Qy, Qz, Qw) and
+  // its v is (v, ω in body axes); Simbody's Free mobilizer has
+  // q = (Qw, Qx, Qy, Qz, r) and u = (ω, v), both vectors in the ground frame.
+  const int nj = static_cast<int>(joints.size()), fq = free ? 7 : 0, fu = free ? 6 : 0;
+  const int nq = fq + nj, n_state = nq + fu + nj;
   State s0 = system.getDefaultState();
-  for (int i = 0; i < nq; ++i) {
-    joints[i].setOneQ(s0, 0, ref.x0[i]);
-    joints[i].setOneU(s0, 0, ref.x0[nq + i]);
-  }
-  // The free body: flange's x = (r, Qx, Qy, Qz, Qw, v, ω in body axes);
-  // Simbody's Free mobilizer has q = (Qw, Qx, Qy, Qz, r) and u = (ω, v), both
-  // vectors in the ground frame.
-  if (free) {
+  {
     const std::vector<double>& x = ref.x0;
-    const Quaternion Q(Vec4(x[6], x[3], x[4], x[5]));
-    free->setQToFitTransform(s0, Transform(Rotation(Q), Vec3(x[0], x[1], x[2])));
-    const Vec3 w_world = Rotation(Q) * Vec3(x[10], x[11], x[12]);
-    free->setUToFitVelocity(s0, SpatialVec(w_world, Vec3(x[7], x[8], x[9])));
+    if (free) {
+      const Quaternion Q(Vec4(x[6], x[3], x[4], x[5]));
+      free->setQToFitTransform(s0, Transform(Rotation(Q), Vec3(x[0], x[1], x[2])));
+      const Vec3 w_world = Rotation(Q) * Vec3(x[nq + 3], x[nq + 4], x[nq + 5]);
+      free->setUToFitVelocity(s0, SpatialVec(w_world, Vec3(x[nq], x[nq + 1], x[nq + 2])));
+    }
+    for (int i = 0; i < nj; ++i) {
+      joints[i].setOneQ(s0, 0, x[fq + i]);
+      joints[i].setOneU(s0, 0, x[nq + fu + i]);
+    }
   }
-  const std::size_t n_state = free ? 13 : 2 * nq;
   auto read_state = [&](const State& s, std::vector<double>& x) {
     if (free) {
-      const Vec7 q = free->getQ(s);  // (Qw, Qx, Qy, Qz, r), integrated as it is: its sign is kept
+      const Vec7 q = free->getQ(s);  // integrated as it is, so its sign is the reference's
       const Vec6 u = free->getU(s);
       const Quaternion Q(Vec4(q[0], q[1], q[2], q[3]));
       const Vec3 w_body = ~Rotation(Q) * Vec3(u[0], u[1], u[2]);
-      x = {q[4], q[5], q[6], q[1], q[2], q[3], q[0], u[3], u[4], u[5], w_body[0], w_body[1], w_body[2]};
-      return;
+      const double fx[] = {q[4], q[5], q[6], q[1], q[2], q[3], q[0]};
+      for (int i = 0; i < 7; ++i) x[i] = fx[i];
+      for (int i = 0; i < 3; ++i) {
+        x[nq + i] = u[3 + i];
+        x[nq + 3 + i] = w_body[i];
+      }
     }
-    for (int i = 0; i < nq; ++i) {
-      x[i] = joints[i].getOneQ(s, 0);
-      x[nq + i] = joints[i].getOneU(s, 0);
+    for (int i = 0; i < nj; ++i) {
+      x[fq + i] = joints[i].getOneQ(s, 0);
+      x[nq + fu + i] = joints[i].getOneU(s, 0);
     }
   };
 
@@ -161,8 +194,8 @@ int main(int argc, char** argv) {
   }
   std::printf("Simbody 3.7 (Debian's libsimbody, built with its assertions on): accuracy sweep per integrator\n");
   const auto refs =
-      peer::read_references(o.reference, {{"robot_arm", 2}, {"gantry_crane", 4}, {"free_body", 13}, {"fourbar", 6}});
-  for (const char* name : {"robot_arm", "gantry_crane", "free_body", "fourbar"}) {
+      peer::read_references(o.reference, {{"robot_arm", 2}, {"gantry_crane", 4}, {"free_body", 13}, {"legged", 37}, {"fourbar", 6}});
+  for (const char* name : {"robot_arm", "gantry_crane", "free_body", "legged", "fourbar"}) {
     if (!o.scene.empty() && o.scene != name) continue;
     const auto r = refs.find(name);
     if (r == refs.end()) {
