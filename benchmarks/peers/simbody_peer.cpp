@@ -6,10 +6,11 @@
 //
 //   simbody_peer --reference FILE [--quick] [--scene NAME]
 //
-// The models match flange's (peer_common.hpp): a Pin (rotation about z), a
-// Slider (translation along x) and a Free mobilizer (its quaternion and
-// ω mapped to flange's FreeMotion state on the way in and out), the mass
-// properties at the same places, uniform gravity along −y and no other force.
+// The models match flange's (peer_common.hpp): a Pin (rotation about z, or
+// about y or x with its frames turned), a Slider (translation along x) and a
+// Free mobilizer (its quaternion and ω mapped to flange's FreeMotion state on
+// the way in and out), the mass properties at the same places, uniform
+// gravity along −y and no other force.
 //
 // Built as its own C++17 program with no flange header: Simbody 3.7's headers
 // do not compile as C++20. Debian's libsimbody is built without NDEBUG and its
