@@ -41,11 +41,15 @@ Eigen::Matrix<double, S::n_v, S::n_v> energy_mass_matrix(const S& scene, const S
 }
 
 /// The condition number of M(q), the ratio of its largest to its smallest
-/// eigenvalue (infinity when M is singular).
+/// eigenvalue (infinity when M is singular). The eigenvalues are taken of a
+/// dynamic-size copy of M: the eigen-solver is then compiled once for every
+/// scene size in a program, where a fixed-size one was compiled again for
+/// each (12 of the 66 s a test unit with many scene sizes took to compile,
+/// docs/performance.md). It allocates; it is a check, not a fast path.
 template <class S, class State>
 double mass_matrix_condition(const S& scene, const State& x) {
-  const auto M = energy_mass_matrix(scene, x);
-  const auto ev = Eigen::SelfAdjointEigenSolver<std::remove_const_t<decltype(M)>>(M, Eigen::EigenvaluesOnly).eigenvalues();
+  const Eigen::MatrixXd M = energy_mass_matrix(scene, x);
+  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M, Eigen::EigenvaluesOnly).eigenvalues();
   return ev[0] > 0 ? ev[S::n_v - 1] / ev[0] : std::numeric_limits<double>::infinity();
 }
 
