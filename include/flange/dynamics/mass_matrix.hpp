@@ -68,7 +68,7 @@ template <class A, class T, class H, class I>
 FLANGE_INLINE composite_inertia<A, T> widen(const rigid_view<T, H, I>& own) {
   composite_inertia<A, T> c;
   c.m = own.m;
-  c.h = svec<T, A::linear_mask>{} + own.h;
+  c.h = widen_to<A::linear_mask>(own.h);
   if constexpr (A::planar) {
     c.I_o.d[A::normal] = value_of<T>(trace(own.I_o));
   } else {

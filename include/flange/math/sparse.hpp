@@ -180,6 +180,20 @@ FLANGE_INLINE svec<T, M & N> restrict_to(const svec<T, N>& v) {
   return r;
 }
 
+/// v with the wider mask M: its own components copied, the others zero.
+/// (Not svec<T, M>{} + v: that adds 0.0 to each of v's components, an
+/// addition the compiler must keep, since −0.0 + 0.0 is +0.0.)
+template <int M, class T, int N>
+FLANGE_INLINE svec<T, M> widen_to(const svec<T, N>& v) {
+  static_assert((M & N) == N, "flange: widen_to would drop a component");
+  svec<T, M> r;
+  detail::for3([&](auto i) FLANGE_INLINE_LAMBDA {
+    constexpr int I = decltype(i)::value;
+    if constexpr (detail::bit(M, I)) r.template at<I>() = v.template get<I>();
+  });
+  return r;
+}
+
 template <class T, int A, int B>
 FLANGE_INLINE svec<T, A | B> operator+(const svec<T, A>& a, const svec<T, B>& b) {
   svec<T, A | B> r;
