@@ -152,11 +152,7 @@ struct mass_matrix_pass {
   FLANGE_INLINE void carry(const W& F, int j) {
     constexpr int P = link_info<S, J>::parent;
     if constexpr (P != 0) {
-      // carry_up's force pair, written as one expression: built from a named
-      // f, GCC kept the pair in memory (the crane's derivative: 236 against 228
-      // instructions), though only its projection on the parent's joint is used.
-      const auto& m = std::get<J - 1>(motions);
-      const force_pair Fp{rot_t(m.E(), F.n) + cross(m.p, rot_t(m.E(), F.f)), rot_t(m.E(), F.f)};
+      const auto Fp = carry_up(std::get<J - 1>(motions), F);
       const auto g = std::get<P - 1>(motions).project(Fp.n, Fp.f);
       for (int i = 0; i < link_info<S, P>::nv; ++i) M(link_info<S, P>::v + i, j) = M(j, link_info<S, P>::v + i) = g[i];
       carry<L, P>(Fp, j);
