@@ -82,9 +82,14 @@ constexpr int constant_mass_offset() {
 
 struct no_constant_mass {};
 struct no_link_turn {};
+struct no_gravity {};
 
-template <int NL, int NS, int NB = 0, bool Turned = false>
+template <int NL, int NS, int NB = 0, bool Turned = false, bool Gravity = false>
 struct dynamics_model {
+  /// −g, the World's acceleration in the recursive passes (kinematics.hpp),
+  /// kept negated so that no pass negates it at every evaluation. Not kept by
+  /// a scene without gravity.
+  [[no_unique_address]] std::conditional_t<Gravity, Vec3d, no_gravity> minus_g{};
   std::array<Vec3d, NS> set_offset{};    ///< a set's origin in its link's coordinates
   std::array<Mat3d, NS> set_rotation{};  ///< rotates link coordinates into the set's
   std::array<rigid_inertia<double>, NL> link{};
@@ -105,7 +110,7 @@ struct dynamics_model {
 template <class S>
 using model_for = dynamics_model<S::tree.n_links, (S::topology.n_sets == 0 ? 1 : S::topology.n_sets),
                                  constant_mass_matrix<S>() ? constant_mass_offset<S, S::tree.n_links>() : 0,
-                                 axis_frames<S>::any>;
+                                 axis_frames<S>::any, S::has_gravity>;
 
 template <class S, class F>
 void for_each_component(const S& scene, F&& f) {
@@ -194,6 +199,7 @@ auto build_model(const S& scene) {
   model_for<S> model{};
   model.set_offset.fill(Vec3d::Zero());  // Eigen leaves its vectors uninitialised
   model.set_rotation.fill(Mat3d::Identity());
+  if constexpr (S::has_gravity) model.minus_g = -scene.gravity();
   if constexpr (walkable<S>) {
     // The whole mass, the yardstick for lengths: m·|p|² must stay finite.
     double total_mass = 0;
