@@ -106,11 +106,19 @@ struct dynamics_model {
   [[no_unique_address]] std::conditional_t<NB == 0, no_constant_mass, pivot_report<double>> mass_pivot{};
 };
 
+/// Whether scene S has gravity; false, not a second error, for a scene
+/// without a World (the scene reports that one itself).
+template <class S>
+constexpr bool gravity_in_model() {
+  if constexpr (S::topology.world < 0) return false;
+  else return S::has_gravity;
+}
+
 /// The model of scene S.
 template <class S>
 using model_for = dynamics_model<S::tree.n_links, (S::topology.n_sets == 0 ? 1 : S::topology.n_sets),
                                  constant_mass_matrix<S>() ? constant_mass_offset<S, S::tree.n_links>() : 0,
-                                 axis_frames<S>::any, S::has_gravity>;
+                                 axis_frames<S>::any, gravity_in_model<S>()>;
 
 template <class S, class F>
 void for_each_component(const S& scene, F&& f) {
@@ -199,7 +207,7 @@ auto build_model(const S& scene) {
   model_for<S> model{};
   model.set_offset.fill(Vec3d::Zero());  // Eigen leaves its vectors uninitialised
   model.set_rotation.fill(Mat3d::Identity());
-  if constexpr (S::has_gravity) model.minus_g = -scene.gravity();
+  if constexpr (gravity_in_model<S>()) model.minus_g = -scene.gravity();
   if constexpr (walkable<S>) {
     // The whole mass, the yardstick for lengths: m·|p|² must stay finite.
     double total_mass = 0;
