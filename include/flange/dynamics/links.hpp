@@ -299,7 +299,8 @@ template <class A, class T, bool HasPositionPass, class S>
 FLANGE_INLINE auto link_motions(const S& scene, const T* q) {
   // Every joint's motion first (the sines and cosines, calls), then the
   // links' offsets and turns: loaded between two calls, they would be kept
-  // across the later ones in memory (chain6: 1785 instructions per derivative against 1820).
+  // across the later ones in memory (chain6: 1785 instructions per
+  // derivative against 1820).
   return [&]<int... L>(std::integer_sequence<int, L...>) FLANGE_INLINE_LAMBDA {
     std::tuple jm{joint_motion_at<T, L + 1, need_rotation<S, L + 1, HasPositionPass>()>(scene, q)...};
     return std::make_tuple(link_motion_from<A, T, L + 1>(scene, std::move(std::get<L>(jm)))...);

@@ -337,9 +337,7 @@ constexpr int axis_rotation_mask(int I, int M) {
   if ((M >> j & 1) || (M >> k & 1)) r |= (1 << j) | (1 << k);
   return r;
 }
-}  // namespace detail
 
-namespace detail {
 /// A rotation about axis I by (c, σ·s), σ = ±1: E·v for σ = 1, Eᵀ·v for
 /// σ = −1. σ picks between a sum and a difference instead of negating s,
 /// which would cost an instruction per rotation (c·a − s·b and c·a + (−s)·b
