@@ -72,7 +72,7 @@ FLANGE_INLINE dvec<A, T> to_dense(const P0& ang, const P1& lin) {
 template <class A, class T>
 FLANGE_INLINE auto from_dense(const dvec<A, T>& x) {
   constexpr auto dims = algebra_dims<A>();
-  Vec3<T> ang = Vec3<T>::Zero(), lin = Vec3<T>::Zero();
+  Vec3<T> ang = zeros<Vec3<T>>(), lin = zeros<Vec3<T>>();
   for (int i = 0; i < algebra_size<A>; ++i) (dims[i].first ? ang : lin)(dims[i].second) = x(i);
   return motion_pair{to_svec<A::angular_mask>(ang), to_svec<A::linear_mask>(lin)};
 }
@@ -82,7 +82,7 @@ template <class A, class T, class R>
 FLANGE_INLINE dmat<A, T> inertia_matrix(const R& c) {
   dmat<A, T> I;
   for (int i = 0; i < algebra_size<A>; ++i) {
-    dvec<A, T> e = dvec<A, T>::Zero();
+    dvec<A, T> e = zeros<dvec<A, T>>();
     e(i) = T(1);
     const auto b = from_dense<A, T>(e);
     const auto F = inertia_times(c, motion_pair{b.ang, b.lin});

@@ -121,7 +121,7 @@ struct svec<T, 0> {
   [[nodiscard]] FLANGE_INLINE T get() const {
     return T(0);
   }
-  [[nodiscard]] FLANGE_INLINE Vec3<T> dense() const { return Vec3<T>::Zero(); }
+  [[nodiscard]] FLANGE_INLINE Vec3<T> dense() const { return zeros<Vec3<T>>(); }
 };
 
 template <class V>
