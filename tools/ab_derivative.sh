@@ -4,7 +4,8 @@
 # falls on both alike:
 #   tools/ab_derivative.sh REV [CXXFLAGS...]
 # Both sides are compiled from tools/probes/ab_scenes.cpp at the Release
-# flags (Google Benchmark is linked for handwritten.hpp), REV's headers in namespace flange_a and this tree's in flange_b. The
+# flags, REV's headers in namespace flange_a and this tree's in flange_b
+# (Google Benchmark is linked because handwritten.hpp includes it). The
 # hand-written closed forms are timed the same way: where they have not
 # changed, their two columns are one code twice and their ratio is the noise.
 # Prints, per scene and loop (throughput, latency), one line
@@ -14,7 +15,7 @@ rev=${1:?commit to compare with}; shift
 here=$(cd "$(dirname "$0")/.." && pwd)
 work=$(mktemp -d)
 trap 'git -C "$here" worktree remove --force "$work/a" >/dev/null 2>&1 || true; rm -rf "$work"' EXIT
-git -C "$here" worktree add --detach "$work/a" "$rev" >/dev/null 2>&1
+git -C "$here" worktree add --detach "$work/a" "$rev" >/dev/null  # its errors stay visible
 eigen=$(pkg-config --cflags eigen3 2>/dev/null || echo -I/usr/include/eigen3)
 flags=(-std=c++20 -O3 -DNDEBUG "$@")
 side() {  # side NAME ROOT
@@ -25,5 +26,5 @@ side a "$work/a" &
 side b "$here"
 wait
 g++ "${flags[@]}" -c "$here/tools/probes/ab_driver.cpp" -o "$work/driver.o"
-g++ "$work/driver.o" "$work/a.o" "$work/b.o" -o "$work/ab" -lbenchmark -lpthread  # handwritten.hpp includes Google Benchmark
+g++ "$work/driver.o" "$work/a.o" "$work/b.o" -o "$work/ab" -lbenchmark -lpthread
 "$work/ab"

@@ -22,8 +22,9 @@ const auto crane = flange::models::gantry_crane(crane_p, 0.7);
 const flange::bench::handwritten_arm arm_hw{arm_p, 0.3};
 const flange::bench::handwritten_crane crane_hw{crane_p, 0.7};
 
+/// A scene with a state of two (q, v) on the first two entries of ab_state.
 template <class System>
-void two(const System& sys, const ab_state& x, ab_state& dx) {
+void on_first_two(const System& sys, const ab_state& x, ab_state& dx) {
   const std::array<double, 2> x2{x[0], x[1]};
   std::array<double, 2> d2;
   sys(x2, d2, 0.0);
@@ -33,7 +34,7 @@ void two(const System& sys, const ab_state& x, ab_state& dx) {
 }  // namespace
 
 // The arm's state is (q, v): it uses x[0], x[1] and writes dx[0], dx[1].
-[[gnu::noinline]] void AB_FN(arm)(const ab_state& x, ab_state& dx) { two(arm, x, dx); }
-[[gnu::noinline]] void AB_FN(arm_handwritten)(const ab_state& x, ab_state& dx) { two(arm_hw, x, dx); }
+[[gnu::noinline]] void AB_FN(arm)(const ab_state& x, ab_state& dx) { on_first_two(arm, x, dx); }
+[[gnu::noinline]] void AB_FN(arm_handwritten)(const ab_state& x, ab_state& dx) { on_first_two(arm_hw, x, dx); }
 [[gnu::noinline]] void AB_FN(crane)(const ab_state& x, ab_state& dx) { crane(x, dx, 0.0); }
 [[gnu::noinline]] void AB_FN(crane_handwritten)(const ab_state& x, ab_state& dx) { crane_hw(x, dx, 0.0); }
