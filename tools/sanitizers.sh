@@ -54,8 +54,11 @@ configure() {  # dir, flags, extra cmake args…
 # and float-cast overflow, enums, bools, returns and the rest stay on.
 asan_flags="-fsanitize=address,undefined -fno-sanitize=null,pointer-overflow -fno-sanitize-recover=all"
 
-run_asan() {
-  local t0; t0=$(date +%s)
+asan_targets=()
+asan_t0=0
+
+run_asan_build() {
+  asan_t0=$(date +%s)
   local dir=$out/asan
   # The programs build as one target, selected_tests (tests/CMakeLists.txt),
   # so that two compile at a time: `--target a b …` builds them one by one.
@@ -63,17 +66,21 @@ run_asan() {
   selection=$(IFS=';'; echo "${asan_tests[*]}")
   configure "$dir" "$asan_flags" -DFLANGE_TEST_SELECTION="$selection"
   say "ASan + UBSan: building ${#asan_tests[@]} test programs with $cxx"
-  local targets=() known
+  local known t
   known=$(cmake --build "$dir" --target help)
   for t in "${asan_tests[@]}"; do
-    if grep -q "\.\.\. $t\$" <<<"$known"; then targets+=("$t"); else say "ASan + UBSan: $t is not configured here (oneTBB missing?), left out"; fi
+    if grep -q "\.\.\. $t\$" <<<"$known"; then asan_targets+=("$t"); else say "ASan + UBSan: $t is not configured here (oneTBB missing?), left out"; fi
   done
   cmake --build "$dir" -j"$jobs" --target selected_tests >"$dir/build.log" 2>&1 || { tail -50 "$dir/build.log"; exit 1; }
-  say "ASan + UBSan: built in $(elapsed "$t0")"
+  say "ASan + UBSan: built in $(elapsed "$asan_t0")"
+}
+
+run_asan_tests() {
+  local dir=$out/asan t
   local t1; t1=$(date +%s)
   export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:halt_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1}
   export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-  for t in "${targets[@]}"; do
+  for t in "${asan_targets[@]}"; do
     if ! "$dir/tests/$t" >"$dir/$t.log" 2>&1; then
       tail -60 "$dir/$t.log"
       say "ASan + UBSan: $t FAILED (log: $dir/$t.log)"
@@ -81,21 +88,35 @@ run_asan() {
     fi
     say "ASan + UBSan: $t passed ($(grep -Eo '[0-9]+ assertions? in [0-9]+ test cases?' "$dir/$t.log" | tail -1))"
   done
-  say "ASan + UBSan: ${#targets[@]} programs passed, no finding (tests ran in $(elapsed "$t1"), in all $(elapsed "$t0"))"
+  say "ASan + UBSan: ${#asan_targets[@]} programs passed, no finding (tests ran in $(elapsed "$t1"), in all $(elapsed "$asan_t0"))"
 }
 
-run_tsan() {
-  local t0; t0=$(date +%s)
+run_asan() { run_asan_build; run_asan_tests; }
+
+# ThreadSanitizer's program is one translation unit, so its build keeps one
+# core busy; in a whole run it builds while the ASan programs, one process at
+# a time, run on the other core (build_tsan &, then test_tsan).
+build_tsan() {
   local dir=$out/tsan
   configure "$dir" "-fsanitize=thread"
-  cmake --build "$dir" -j"$jobs" --target thread_safety_test >"$dir/build.log" 2>&1 || { tail -50 "$dir/build.log"; exit 1; }
+  cmake --build "$dir" -j"$jobs" --target thread_safety_test >"$dir/build.log" 2>&1 || { tail -50 "$dir/build.log"; return 1; }
+}
+
+test_tsan() {  # t0
+  local dir=$out/tsan
   export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:second_deadlock_stack=1}
   if ! "$dir/tests/thread_safety_test" >"$dir/thread_safety_test.log" 2>&1; then
     tail -80 "$dir/thread_safety_test.log"
     say "ThreadSanitizer: thread_safety_test FAILED"
     exit 1
   fi
-  say "ThreadSanitizer: thread_safety_test passed, no data race ($(elapsed "$t0"))"
+  say "ThreadSanitizer: thread_safety_test passed, no data race ($(elapsed "$1"))"
+}
+
+run_tsan() {
+  local t0; t0=$(date +%s)
+  build_tsan || exit 1
+  test_tsan "$t0"
 }
 
 run_fuzz() {
@@ -104,22 +125,44 @@ run_fuzz() {
   configure "$dir" "" -DFLANGE_BUILD_TESTS=OFF -DFLANGE_BUILD_FUZZERS=ON
   cmake --build "$dir" -j"$jobs" --target fuzzers >"$dir/build.log" 2>&1 || { tail -50 "$dir/build.log"; exit 1; }
   say "fuzz: built in $(elapsed "$t0")"
+  # The two targets run side by side, one core each (libFuzzer runs one
+  # process): the same seconds of fuzzing each, in half the wall time.
+  local f pids=()
   for f in scenes urdf; do
     local work=$dir/run_$f
     rm -rf "$work" && mkdir -p "$work/corpus"
     # New inputs go to the work corpus; the committed seeds are only read.
-    if ! (cd "$work" && "$dir/fuzz/${f}_fuzz" -max_total_time="$fuzz_seconds" -max_len=4096 -timeout=10 \
-            -rss_limit_mb=4096 -print_final_stats=1 corpus "$root/fuzz/corpus/$f" >"$work/log" 2>&1); then
+    (cd "$work" && exec "$dir/fuzz/${f}_fuzz" -max_total_time="$fuzz_seconds" -max_len=4096 -timeout=10 \
+        -rss_limit_mb=4096 -print_final_stats=1 corpus "$root/fuzz/corpus/$f" >"$work/log" 2>&1) &
+    pids+=($!)
+  done
+  local i=0 failed=0
+  for f in scenes urdf; do
+    local work=$dir/run_$f
+    if ! wait "${pids[$i]}"; then
       tail -60 "$work/log"
       say "fuzz: ${f}_fuzz found a failure; the input is in $work (crash-*, timeout-*, oom-*)"
-      exit 1
+      failed=1
+    else
+      say "fuzz: ${f}_fuzz ran $(grep -Eo 'Done [0-9]+ runs in [0-9]+ second' "$work/log") with no finding"
     fi
-    say "fuzz: ${f}_fuzz ran $(grep -Eo 'Done [0-9]+ runs in [0-9]+ second' "$work/log") with no finding"
+    i=$((i + 1))
   done
+  ((failed == 0)) || exit 1
 }
 
 case $parts in
-  all) run_asan; run_tsan; run_fuzz ;;
+  all)
+    # ASan's build first (two programs at a time); then TSan's one-unit build
+    # beside the ASan runs, which use one core.
+    run_asan_build
+    t_tsan=$(date +%s)
+    build_tsan >"$out/tsan-build.out" 2>&1 &
+    tsan_pid=$!
+    run_asan_tests
+    wait "$tsan_pid" || { cat "$out/tsan-build.out"; say "ThreadSanitizer: the build failed"; exit 1; }
+    test_tsan "$t_tsan"
+    run_fuzz ;;
   asan) run_asan ;;
   tsan) run_tsan ;;
   fuzz) run_fuzz ;;
