@@ -325,9 +325,11 @@ int main(int argc, char** argv) {
     if (name.find("/residual/") != std::string::npos || name.find("/recover/") != std::string::npos)
       std::printf("cost %s = %.1f ns (median)\n", name.c_str(), ns);
 #ifdef FLANGE_COMPILE_TIMES
+  // Written by `cmake --build build --target compile_times`, when it was run.
   std::ifstream ct(FLANGE_COMPILE_TIMES);
   std::string line;
-  std::getline(ct, line);  // header
+  if (!std::getline(ct, line))
+    std::printf("compile times not measured (cmake --build build --target compile_times)\n");
   while (std::getline(ct, line)) {
     const auto comma = line.find(',');
     std::printf("compile %s %s s\n", line.substr(0, comma).c_str(), line.substr(comma + 1).c_str());
