@@ -23,7 +23,7 @@
 #include <string>
 
 #include <benchmark/benchmark.h>
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 #include <flange/models/gimbal.hpp>
 
 #include "handwritten.hpp"

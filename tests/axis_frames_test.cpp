@@ -5,7 +5,7 @@
 // FixedRotations (which no rule turns), and every output of a turned scene
 // (frames, cut forces) satisfies the components' equations.
 #include <catch2/catch.hpp>
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 
 #include "consistency.hpp"
 #include "random_params.hpp"

@@ -11,7 +11,7 @@
 #include <random>
 
 #include <flange/dynamics/other_algorithm.hpp>
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 
 using namespace flange;
 using Catch::Matchers::Contains;

@@ -10,7 +10,7 @@
 #include <random>
 
 #include <flange/dynamics/energy_mass_matrix.hpp>
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 
 using namespace flange;
 

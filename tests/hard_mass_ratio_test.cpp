@@ -8,7 +8,7 @@
 #include <random>
 
 #include <flange/dynamics/energy_mass_matrix.hpp>
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 
 #include "tree_laws.hpp"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 #include <flange/models/controlled_crane.hpp>
 
 using namespace flange;

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 
 using namespace flange;
 

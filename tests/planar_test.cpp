@@ -6,7 +6,7 @@
 // prismatic joints along both in-plane axes.
 #include <catch2/catch.hpp>
 #include <flange/dynamics/forward_dynamics.hpp>
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 
 #include "random_params.hpp"
 

@@ -17,7 +17,7 @@ rank() {
     dynamics/*) echo 6 ;;
     simulate/*) echo 7 ;;
     models/*|study/*|ensemble/*|viewer/*) echo 8 ;;
-    flange.hpp) echo 9 ;;
+    flange.hpp|equations_of_motion.hpp) echo 9 ;;
     *) echo "unknown" ;;
   esac
 }

@@ -1,6 +1,6 @@
 // A connection that misspells a component's name: the diagnostic suggests
 // the closest frame name.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 #ifdef FLANGE_KO
 constexpr auto c = connect<"jiont.frame_b", "mass.frame_a">;

@@ -1,6 +1,6 @@
 // An input written for double cannot carry dual numbers: asking for the
 // Jacobian must say so, not silently treat the input as constant.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 int main() {
 #ifdef FLANGE_KO

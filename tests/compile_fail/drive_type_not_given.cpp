@@ -1,6 +1,6 @@
 // A Revolute drive given a callable without its type is refused in one
 // static_assert that names the fix; the ok half uses revolute<…>(f).
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 int main() {
   auto tau = [](auto t, const auto& x) { return -x.q(0) - t; };

@@ -1,6 +1,6 @@
 // A driven joint written last in a loop would be cut, and its drive would
 // act on a coordinate the state does not have: refused, naming the joint.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 using models::bar;
 int main() {

@@ -1,4 +1,4 @@
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 #ifdef FLANGE_KO
 using Second = Body<"mass">;

@@ -1,6 +1,6 @@
 // The robot arm with one connection too many: motor.frame_b and rod.frame_a
 // are already in one set through joint.frame_b.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 auto s = scene(World<"world">{}, Torque<"motor">({.M_ext = Vec3d::Zero()}), Revolute<"joint", axis::z>{},
                FixedTranslation<"rod">({.d = {1, 0, 0}}), Body<"mass">({.m = 1.0}),

@@ -1,4 +1,4 @@
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 #ifdef FLANGE_KO
 constexpr auto bad = connect<"joint.frame_a", "joint.frame_a">;

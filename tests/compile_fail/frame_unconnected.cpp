@@ -1,6 +1,6 @@
 // A line force whose frame_b was never connected: the diagnostic names the
 // frame and says to connect it (not to add joints).
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 int main() {
   const auto s = scene(World<"world">({.g = {0, -9.81, 0}}), Revolute<"joint", axis::z>(),

@@ -1,5 +1,5 @@
 // initial_state<...> naming one joint twice is refused at compile time.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 #include <flange/models/paper.hpp>
 using namespace flange;
 int main() {

@@ -1,6 +1,6 @@
 // A recovered internal read by a misspelt name is refused at compile time,
 // naming the component and the variable.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 #include <flange/models/paper.hpp>
 using namespace flange;
 int main() {

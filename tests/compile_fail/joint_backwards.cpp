@@ -1,6 +1,6 @@
 // A FreeMotion (or a Planar joint) must be connected frame_a toward the
 // World; connected the other way round it is refused in one line.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 auto s = scene(World<"world">{}, FreeMotion<"fly">{}, Body<"b">({.m = 1.0, .J = Mat3d::Identity()}),
 #ifdef FLANGE_KO

@@ -2,7 +2,7 @@
 // the joint concept (core/joint.hpp, docs/architecture.md "Write your own
 // joint"). The ok half has every member and simulates; the ko half misses
 // qdot and is refused at the scene, naming the joint and the member.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 
 struct Hinge {

@@ -1,6 +1,6 @@
 // An input that reads a joint by a misspelt name is refused at compile time
 // with one error whose instantiation line lists the scene's joints.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 #include <flange/models/paper.hpp>
 using namespace flange;
 int main() {

@@ -1,6 +1,6 @@
 // Two FixedTranslations from the World's frame back to it close a loop of
 // rigid components only: no joint in it can be cut, and nothing can move.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 auto s = scene(World<"world">{}, Revolute<"joint", axis::z>{}, FixedTranslation<"rod">({.d = {1, 0, 0}}),
                Body<"mass">({.m = 1.0}), FixedTranslation<"out">({.d = {1, 0, 0}}),

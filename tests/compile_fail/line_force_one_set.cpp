@@ -1,6 +1,6 @@
 // A spring whose two ends are in one connection set has no line to act along.
 // The ok half hangs it between the World and the arm's end.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 auto s = scene(World<"world">{}, Revolute<"joint", axis::z>{}, FixedTranslation<"rod">({.d = {1, 0, 0}}),
                Body<"mass">({.m = 1.0}), Spring<"spring">({.c = 10.0, .s0 = 0.5}),

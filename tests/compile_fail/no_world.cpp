@@ -1,4 +1,4 @@
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 #ifdef FLANGE_KO
 auto s = scene(FixedTranslation<"rod">({.d = {1, 0, 0}}), Body<"mass">({.m = 1.0}),

@@ -1,6 +1,6 @@
 // Two bodies joined to each other but to nothing else: every frame is
 // connected, yet no path reaches the World.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 auto s = scene(World<"world">{}, Revolute<"joint", axis::z>{}, Body<"mass">({.m = 1.0}),
 #ifdef FLANGE_KO

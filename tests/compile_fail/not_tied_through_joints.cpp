@@ -1,5 +1,5 @@
 // A body held only by a Torque element floats: it has no joint coordinates.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 auto s = scene(World<"world">{}, Revolute<"joint", axis::z>{}, Body<"mass">({.m = 1.0}),
                Torque<"motor">({.M_ext = Vec3d::Zero()}), Body<"free">({.m = 1.0}),

@@ -1,7 +1,7 @@
 // Torque<"m1">({.M_ext = f}) with a callable f, the natural reading of the
 // README, is refused in one static_assert that names the fix; the ok half
 // uses the factory that deduces the type, and constants work as before.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 int main() {
   auto push = [](auto t) { return Eigen::Matrix<decltype(t), 3, 1>(decltype(t)(0), decltype(t)(0), t); };

@@ -1,4 +1,4 @@
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 auto s = scene(World<"world">{},
 #ifdef FLANGE_KO

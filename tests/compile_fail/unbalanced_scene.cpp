@@ -1,6 +1,6 @@
 // A user-written body that forgets its torque equation: 9 scalar equations
 // where its 18 unknowns less 6 flow variables need 12.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 
 template <fixed_string Name, bool Complete>

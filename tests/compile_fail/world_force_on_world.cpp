@@ -1,6 +1,6 @@
 // A WorldForce connected to the World's own frame pushes on nothing that
 // moves. The ok half pushes the arm's end.
-#include <flange/flange.hpp>
+#include <flange/equations_of_motion.hpp>
 using namespace flange;
 auto s = scene(World<"world">{}, Revolute<"joint", axis::z>{}, FixedTranslation<"rod">({.d = {1, 0, 0}}),
                Body<"mass">({.m = 1.0}), WorldForce<"push">({.value = Vec3d(1, 0, 0)}),
