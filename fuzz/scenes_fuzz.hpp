@@ -30,7 +30,7 @@
 #include <numbers>
 
 #include <flange/dynamics/other_algorithm.hpp>
-#include <flange/equations_of_motion.hpp>
+#include <flange/flange.hpp>
 #include <flange/dynamics/energy_mass_matrix.hpp>
 #include <flange/models/chain.hpp>
 #include <flange/models/linkages.hpp>
