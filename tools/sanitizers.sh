@@ -127,8 +127,8 @@ run_fuzz() {
   say "fuzz: built in $(elapsed "$t0")"
   # The two targets run side by side, one core each (libFuzzer runs one
   # process): the same seconds of fuzzing each, in half the wall time.
-  local f pids=()
-  for f in scenes urdf; do
+  local f pids=() targets=(scenes urdf)
+  for f in "${targets[@]}"; do
     local work=$dir/run_$f
     rm -rf "$work" && mkdir -p "$work/corpus"
     # New inputs go to the work corpus; the committed seeds are only read.
@@ -137,7 +137,7 @@ run_fuzz() {
     pids+=($!)
   done
   local i=0 failed=0
-  for f in scenes urdf; do
+  for f in "${targets[@]}"; do
     local work=$dir/run_$f
     if ! wait "${pids[$i]}"; then
       tail -60 "$work/log"
@@ -159,8 +159,10 @@ case $parts in
     t_tsan=$(date +%s)
     build_tsan >"$out/tsan-build.out" 2>&1 &
     tsan_pid=$!
+    trap 'kill "$tsan_pid" 2>/dev/null || true' EXIT  # an ASan failure leaves no compiler running
     run_asan_tests
     wait "$tsan_pid" || { cat "$out/tsan-build.out"; say "ThreadSanitizer: the build failed"; exit 1; }
+    trap - EXIT
     test_tsan "$t_tsan"
     run_fuzz ;;
   asan) run_asan ;;
