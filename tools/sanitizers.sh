@@ -151,6 +151,12 @@ run_fuzz() {
   ((failed == 0)) || exit 1
 }
 
+kill_tree() {  # pid: the process and everything it started
+  local c
+  for c in $(pgrep -P "$1" || true); do kill_tree "$c"; done
+  kill "$1" 2>/dev/null || true
+}
+
 case $parts in
   all)
     # ASan's build first (two programs at a time); then TSan's one-unit build
@@ -159,7 +165,7 @@ case $parts in
     t_tsan=$(date +%s)
     build_tsan >"$out/tsan-build.out" 2>&1 &
     tsan_pid=$!
-    trap 'kill "$tsan_pid" 2>/dev/null || true' EXIT  # an ASan failure leaves no compiler running
+    trap 'kill_tree "$tsan_pid"' EXIT  # an ASan failure leaves no compiler running
     run_asan_tests
     wait "$tsan_pid" || { cat "$out/tsan-build.out"; say "ThreadSanitizer: the build failed"; exit 1; }
     trap - EXIT
