@@ -135,8 +135,35 @@ FLANGE_INLINE aba_force<A, T> as_force(const N& n, const F& f) {
 /// 1693 → 1560 instructions a link. In a plane it is a symmetric 3 × 3 matrix
 /// over (α_K, a_i, a_j), carried by the link's motion transform in blocks
 /// (add_from_child below).
+///
+/// After I_a = I_A − U·D⁻¹·Uᵀ, I_a·S = 0. For a joint of one rate along a
+/// coordinate direction (S = ±e_ZA angular: a revolute joint in its axis
+/// frame; ±e_ZL linear: a prismatic one; known_zero_dims below) that zeroes
+/// whole rows: Θ's row and column ZA and H's row ZA, or M's row and column
+/// ZL and H's column ZL. subtract, times and add_from_child take ZA and ZL
+/// (−1: none): they set those entries to zero instead of computing the
+/// cancellation, skip them as factors, and turn Θ and H about the joint's own
+/// axis (its rotation's first factor) in the 2 × 2 block that is left
+/// (math/congruence.hpp).
 template <class A, class T>
 struct articulated_inertia;
+
+/// The angular and the linear dimension a joint's single motion column is
+/// (−1: none, or the joint has several rates).
+template <class Mo, int NV>
+constexpr std::pair<int, int> known_zero_dims() {
+  if constexpr (NV != 1) {
+    return {-1, -1};
+  } else {
+    using C = decltype(std::declval<const Mo&>().template col<0>());
+    constexpr int am = std::remove_cvref_t<decltype(std::declval<C>().ang)>::mask;
+    constexpr int lm = std::remove_cvref_t<decltype(std::declval<C>().lin)>::mask;
+    constexpr auto single = [](int m) { return m == 1 ? 0 : m == 2 ? 1 : m == 4 ? 2 : -1; };
+    if constexpr (lm == 0 && single(am) >= 0) return {single(am), -1};
+    else if constexpr (am == 0 && single(lm) >= 0) return {-1, single(lm)};
+    else return {-1, -1};
+  }
+}
 
 template <class T>
 struct articulated_inertia<spatial_algebra, T> {
@@ -150,27 +177,30 @@ struct articulated_inertia<spatial_algebra, T> {
       for (int j = 0; j < 3; ++j) a.M(i, j) = i == j ? r.m : T(0);
     return a;
   }
-  template <class Ang, class Lin>
+  template <int ZA = -1, int ZL = -1, class Ang, class Lin>
   FLANGE_INLINE aba_force<A, T> times(const Ang& al, const Lin& a) const {
-    return as_force<A, T>(Th * al + H * a, rot_t(H, al) + M * a);
+    constexpr int NA = ZA < 0 ? 7 : 7 & ~(1 << ZA), NL = ZL < 0 ? 7 : 7 & ~(1 << ZL);
+    const auto alz = fit<Ang::mask & NA>(al);
+    const auto az = fit<Lin::mask & NL>(a);
+    return as_force<A, T>(fit<NA>(Th * alz + H * az), fit<NL>(rot_t(H, alz) + M * az));
   }
   /// The yardstick of a pivot: the trace of the blocks a column moves in.
   FLANGE_INLINE T scale(bool ang, bool lin) const { return (ang ? Th.trace() : T(0)) + (lin ? M.trace() : T(0)); }
   /// −= Σ U_i·W_iᵀ, for force columns U and W whose sum is symmetric (U·D⁻¹
   /// and U in practice, so Θ and M are updated as symmetric).
-  template <std::size_t N>
+  template <int ZA = -1, int ZL = -1, std::size_t N>
   FLANGE_INLINE void subtract(const std::array<aba_force<A, T>, N>& U, const std::array<aba_force<A, T>, N>& W) {
     for (std::size_t k = 0; k < N; ++k) {
       const Vec3<T> un = U[k].n.dense(), uf = U[k].f.dense(), wn = W[k].n.dense(), wf = W[k].f.dense();
-      small::sub_outer_sym(Th, un, wn);
-      small::sub_outer(H, un, wf);
-      small::sub_outer_sym(M, uf, wf);
+      small::sub_outer_sym<ZA>(Th, un, wn);
+      small::sub_outer<ZA, ZL>(H, un, wf);
+      small::sub_outer_sym<ZL>(M, uf, wf);
     }
   }
-  template <class Mo>
+  template <int ZA = -1, int ZL = -1, class Mo>
   FLANGE_INLINE void add_from_child(const articulated_inertia& c, const Mo& m) {
-    const Mat3<T> Thr = rotated_back_sym<T>(m.E(), c.Th), Hr = rotated_back<T>(m.E(), c.H),
-                  Mr = rotated_back_sym<T>(m.E(), c.M);
+    const Mat3<T> Thr = rotated_back_sym<T, ZA>(m.E(), c.Th), Hr = rotated_back<T, ZA>(m.E(), c.H),
+                  Mr = rotated_back_sym<T, ZL>(m.E(), c.M);
     small::add_to(M, Mr);
     if constexpr (is_zero_vec<decltype(m.p)>) {
       small::add_to(Th, Thr);
@@ -194,7 +224,7 @@ struct articulated_inertia<planar_algebra<K>, T> {
   FLANGE_INLINE static articulated_inertia rigid(const R& r) {
     return {inertia_matrix<A, T>(r)};
   }
-  template <class Ang, class Lin>
+  template <int = -1, int = -1, class Ang, class Lin>
   FLANGE_INLINE aba_force<A, T> times(const Ang& al, const Lin& a) const {
     const auto x = from_dense<A, T>(small::mul(I, to_dense<A, T>(al, a)));
     return {x.ang, x.lin};
@@ -202,7 +232,7 @@ struct articulated_inertia<planar_algebra<K>, T> {
   FLANGE_INLINE T scale(bool ang, bool lin) const {
     return (ang ? I(0, 0) : T(0)) + (lin ? I(1, 1) + I(2, 2) : T(0));
   }
-  template <std::size_t N>
+  template <int = -1, int = -1, std::size_t N>
   FLANGE_INLINE void subtract(const std::array<aba_force<A, T>, N>& U, const std::array<aba_force<A, T>, N>& W) {
     for (std::size_t k = 0; k < N; ++k)
       small::sub_outer_sym(I, to_dense<A, T>(U[k].n, U[k].f), to_dense<A, T>(W[k].n, W[k].f));
@@ -211,7 +241,7 @@ struct articulated_inertia<planar_algebra<K>, T> {
   /// (E₂ the rotation in the plane, q = e_K × p), in blocks: with
   /// h' = E₂ᵀ·h and M' = E₂ᵀ·M·E₂ (M the 2 × 2 block over a_i, a_j),
   ///   θ + 2·h'·q + qᵀ·M'·q,   h' + M'·q,   M'.
-  template <class Mo>
+  template <int = -1, int = -1, class Mo>
   FLANGE_INLINE void add_from_child(const articulated_inertia& c, const Mo& m) {
     constexpr int i = (K + 1) % 3, j = (K + 2) % 3;
     const auto pair = [](const T& x, const T& y) FLANGE_INLINE_LAMBDA {
@@ -368,15 +398,16 @@ FLANGE_INLINE pivot_report<T> aba_up(W& w, const Mo& m, P* p, const T* tau) {
       w.UDinv[k] = {n, f};
     }
     // I_a = I_A − U·D⁻¹·Uᵀ; p_a = p_A + I_a·c + U·D⁻¹·u
-    w.IA.subtract(w.UDinv, w.U);
-    const auto Iac = w.IA.times(w.c.ang, w.c.lin);
+    constexpr auto Z = known_zero_dims<Mo, nv>();
+    w.IA.template subtract<Z.first, Z.second>(w.UDinv, w.U);
+    const auto Iac = w.IA.template times<Z.first, Z.second>(w.c.ang, w.c.lin);
     auto pn = w.pA.n + Iac.n;
     auto pf = w.pA.f + Iac.f;
     for (int k = 0; k < nv; ++k) {
       pn = pn + w.u[k] * w.UDinv[k].n;
       pf = pf + w.u[k] * w.UDinv[k].f;
     }
-    p->IA.add_from_child(w.IA, m);
+    p->IA.template add_from_child<Z.first, Z.second>(w.IA, m);
     const auto up = carry_up(m, force_pair{pn, pf});
     p->pA = as_force<A, T>(p->pA.n + up.n, p->pA.f + up.f);
   }

@@ -18,26 +18,36 @@
 
 namespace flange {
 
-/// Eᵀ·X·E for any 3 × 3 X.
-template <class T, class E>
+/// Eᵀ·X·E for any 3 × 3 X; ZR (−1: none) a row X is known to have zero.
+/// A coordinate rotation about axis ZR keeps that row zero and turns only the
+/// other two (an articulated inertia's H behind a revolute joint,
+/// articulated_body.hpp).
+template <class T, int ZR = -1, class E>
 FLANGE_INLINE Mat3<T> rotated_back(const E& R, const Mat3<T>& X) {
   if constexpr (is_identity_rotation<E>) {
     return X;
   } else if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) {
     return small::mul(small::mul_tn(R, X), R);
   } else if constexpr (is_rotation_product<E>) {
-    return rotated_back<T>(R.b, rotated_back<T>(R.a, X));  // (A·B)ᵀ·X·(A·B) = Bᵀ·(Aᵀ·X·A)·B
+    return rotated_back<T>(R.b, rotated_back<T, ZR>(R.a, X));  // (A·B)ᵀ·X·(A·B) = Bᵀ·(Aᵀ·X·A)·B
   } else {
-    Mat3<T> A, B;  // A = Eᵀ·X column by column, then B = (A·E)ᵀ = Eᵀ·Aᵀ column by column
+    // A = Eᵀ·X column by column (the rows X may hold: CM), then B = A·E
+    // row by row, the rows A may hold (AM) only.
+    constexpr int CM = ZR < 0 ? 7 : 7 & ~(1 << ZR), AM = detail::axis_rotation_mask(E::axis, CM);
+    Mat3<T> A, B;
     detail::static_for<3>([&](auto k) FLANGE_INLINE_LAMBDA {
       constexpr int K = decltype(k)::value;
-      const auto c = rot_t(R, to_svec(Vec3<T>(X(0, K), X(1, K), X(2, K))));
+      const auto c = rot_t(R, to_svec<CM>(Vec3<T>(X(0, K), X(1, K), X(2, K))));
       detail::static_for<3>([&](auto i) FLANGE_INLINE_LAMBDA { A(decltype(i)::value, K) = c.template get<decltype(i)::value>(); });
     });
     detail::static_for<3>([&](auto k) FLANGE_INLINE_LAMBDA {
       constexpr int K = decltype(k)::value;
-      const auto c = rot_t(R, to_svec(Vec3<T>(A(K, 0), A(K, 1), A(K, 2))));
-      detail::static_for<3>([&](auto i) FLANGE_INLINE_LAMBDA { B(K, decltype(i)::value) = c.template get<decltype(i)::value>(); });
+      if constexpr (detail::bit(AM, K)) {
+        const auto c = rot_t(R, to_svec(Vec3<T>(A(K, 0), A(K, 1), A(K, 2))));
+        detail::static_for<3>([&](auto i) FLANGE_INLINE_LAMBDA { B(K, decltype(i)::value) = c.template get<decltype(i)::value>(); });
+      } else {
+        detail::static_for<3>([&](auto i) FLANGE_INLINE_LAMBDA { B(K, decltype(i)::value) = T(0); });
+      }
     });
     return B;
   }
@@ -50,26 +60,34 @@ FLANGE_INLINE Mat3<T> rotated_back(const E& R, const Mat3<T>& X) {
 ///   Y_II = X_II,  Y_Ij = c·X_Ij − s·X_Ik,  Y_Ik = s·X_Ij + c·X_Ik,
 ///   Y_jj = c²·X_jj − 2cs·X_jk + s²·X_kk,  Y_kk = s²·X_jj + 2cs·X_jk + c²·X_kk,
 ///   Y_jk = cs·(X_jj − X_kk) + (c² − s²)·X_jk.
-template <class T, class E>
+///
+/// Z (−1: none) is a row and column X is known to have zero: a rotation about
+/// axis Z keeps them zero and computes only Y_jj, Y_kk, Y_jk (an articulated
+/// inertia's Θ behind a revolute joint, articulated_body.hpp).
+template <class T, int Z = -1, class E>
 FLANGE_INLINE Mat3<T> rotated_back_sym(const E& R, const Mat3<T>& X) {
   if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) {
     return small::congruence_sym(R, X);
   } else if constexpr (is_rotation_product<E>) {
-    return rotated_back_sym<T>(R.b, rotated_back_sym<T>(R.a, X));
+    return rotated_back_sym<T>(R.b, rotated_back_sym<T, Z>(R.a, X));
   } else if constexpr (requires { E::axis; }) {
     constexpr int I = E::axis, j = E::j, k = E::k;
     const T cc = R.c * R.c, ss = R.s * R.s, cs = R.c * R.s;
     const T t = T(2) * cs * X(j, k);
     Mat3<T> Y;
-    Y(I, I) = X(I, I);
-    Y(I, j) = Y(j, I) = R.c * X(I, j) - R.s * X(I, k);
-    Y(I, k) = Y(k, I) = R.s * X(I, j) + R.c * X(I, k);
+    if constexpr (I == Z) {
+      Y(I, I) = Y(I, j) = Y(j, I) = Y(I, k) = Y(k, I) = T(0);
+    } else {
+      Y(I, I) = X(I, I);
+      Y(I, j) = Y(j, I) = R.c * X(I, j) - R.s * X(I, k);
+      Y(I, k) = Y(k, I) = R.s * X(I, j) + R.c * X(I, k);
+    }
     Y(j, j) = cc * X(j, j) - t + ss * X(k, k);
     Y(k, k) = ss * X(j, j) + t + cc * X(k, k);
     Y(j, k) = Y(k, j) = cs * (X(j, j) - X(k, k)) + (cc - ss) * X(j, k);
     return Y;
   } else {
-    return rotated_back<T>(R, X);
+    return rotated_back<T, Z>(R, X);
   }
 }
 

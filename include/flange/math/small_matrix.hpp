@@ -52,11 +52,18 @@ FLANGE_INLINE void sub_from(Mat3<T>& a, const Mat3<T>& b) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) a(i, j) -= b(i, j);
 }
-/// a −= u·wᵀ
-template <class T>
+/// a −= u·wᵀ, where the result is known to have row ZR and column ZC zero
+/// (−1: none): those entries are set to zero, not computed.
+template <int ZR = -1, int ZC = -1, class T>
 FLANGE_INLINE void sub_outer(Mat3<T>& a, const Vec3<T>& u, const Vec3<T>& w) {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) a(i, j) -= u(i) * w(j);
+  detail::static_for<3>([&](auto i) FLANGE_INLINE_LAMBDA {
+    constexpr int I = decltype(i)::value;
+    detail::static_for<3>([&](auto j) FLANGE_INLINE_LAMBDA {
+      constexpr int J = decltype(j)::value;
+      if constexpr (I == ZR || J == ZC) a(I, J) = T(0);
+      else a(I, J) -= u(I) * w(J);
+    });
+  });
 }
 /// f(i, j) for each entry of the upper triangle (i ≤ j), indices as constants.
 template <class F>
@@ -70,10 +77,14 @@ FLANGE_INLINE void for_upper(F&& f) {
   });
 }
 /// a −= u·wᵀ where the sum of such terms keeps a symmetric (U·D⁻¹·Uᵀ):
-/// the upper triangle, mirrored.
-template <class T>
+/// the upper triangle, mirrored; row and column Z (−1: none), known to
+/// become zero, are set to zero.
+template <int Z = -1, class T>
 FLANGE_INLINE void sub_outer_sym(Mat3<T>& a, const Vec3<T>& u, const Vec3<T>& w) {
-  for_upper([&](int i, int j) FLANGE_INLINE_LAMBDA { a(j, i) = a(i, j) -= u(i) * w(j); });
+  for_upper([&](int i, int j) FLANGE_INLINE_LAMBDA {
+    if (i == Z || j == Z) a(j, i) = a(i, j) = T(0);
+    else a(j, i) = a(i, j) -= u(i) * w(j);
+  });
 }
 /// eᵀ·x·e for a symmetric x: x·e, then the upper triangle of eᵀ·(x·e), mirrored.
 template <class T>
