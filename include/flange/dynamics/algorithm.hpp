@@ -18,13 +18,12 @@
 // and b and c larger for a link turned by a general rotation than by a
 // typed one (a coordinate rotation, or the product of two that a link in its
 // joint's axis frame turns by: axis_frames.hpp). The crossover this gives on
-// chains: 12 links with coordinate or run-time axes (the latter measured
-// equal at 10), 13 in a plane; the floating legged robot (18
-// rates, branches 3 deep) stays with Newton–Euler. (Measured with
-// tools/chain_counts.sh; beyond about 8 links Newton–Euler costs more per
-// link than the model says, as its unrolled code outgrows the instruction
-// cache, while the articulated body then shares its steps between links:
-// docs/performance.md.)
+// chains: 7 links with coordinate or run-time axes (costs.hpp: measured 7
+// with run-time axes and 8 with typed ones, 3 % apart at 7), 13 in a plane.
+// (Measured with tools/chain_counts.sh; beyond about 6 links Newton–Euler
+// costs more per link than the model says, as its unrolled code outgrows the
+// processor's caches of decoded instructions, while the articulated body
+// then shares its steps between links: docs/performance.md.)
 // A scene with loops always takes the first: its constraint solve needs M.
 #pragma once
 #include "flange/detail/inline.hpp"

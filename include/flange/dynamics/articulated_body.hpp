@@ -305,16 +305,16 @@ constexpr int aba_unrolled_instructions() {
 }
 /// Whether the per-link steps run as shared functions, one per kind of link
 /// (aba_up_shared, aba_down_shared, and aba_start_shared in space), rather
-/// than unrolled into the pass: when the unrolled code would pass about
-/// 13,000 instructions. Beyond that it outgrows the instruction cache, and
-/// the time per link rose by half while the instructions per link did not
+/// than unrolled into the pass: when the unrolled code would pass a number of
+/// instructions (costs.hpp: 5,000 in space, 13,000 in a plane). Beyond that
+/// it outgrows the processor's caches of decoded instructions, and the time
+/// per link rose by half while the instructions per link did not
 /// (docs/performance.md); below it the calls only cost. This puts the switch
-/// at 9 links with run-time axes, 12 with typed ones and 28 in a plane, where
-/// the measured crossovers are (8 | 10, 10 | 12, 32 | 48 links: unrolled
-/// faster | shared faster).
+/// at 6 links in space (typed or run-time axes) and 28 in a plane.
 template <class A, class S>
 constexpr bool aba_shared_steps() {
-  return aba_unrolled_instructions<A, S>() > aba_shared_steps_above;
+  return aba_unrolled_instructions<A, S>() >
+         (A::planar ? aba_shared_steps_above.planar : aba_shared_steps_above.spatial);
 }
 
 /// D⁻¹ for D = Sᵀ·I_A·S, with the relative pivot test of ldlt.hpp against the

@@ -21,10 +21,19 @@ namespace flange::detail {
 struct algorithm_costs {
   double ne_rate, carry_general, carry_typed, aba_general, aba_typed, aba_dof;
 };
+/// The spatial articulated body's typed link (75) is its shared form's
+/// cost a link on the stop-42 machine (AMD EPYC, 2 cores), after its
+/// inertias' known zeros (articulated_body.hpp): 8 → 16 links, 600 → 1225 ns.
+/// It puts the chains' crossover at 7 links, where that machine measured it
+/// (run-time axes: Newton–Euler 424 | 638 ns at 6 | 7 links, shared
+/// articulated body 436 | 512; typed axes: 497 | 609 ns at 7 | 8 against
+/// 512 | 600). The earlier machine's was 125, unrolled, crossover 12
+/// (docs/performance.md, "Choosing the algorithm"); general rotations
+/// (110) were not measured again.
 template <class A>
 constexpr algorithm_costs costs_for() {
   if constexpr (A::planar) return {12.8, 3.9, 3.9, 35, 35, 22};
-  else return {17.7, 31.7, 20, 110, 125, 22};
+  else return {17.7, 31.7, 20, 110, 75, 22};
 }
 
 /// The articulated body's instructions per link when its steps are unrolled
@@ -33,11 +42,20 @@ constexpr algorithm_costs costs_for() {
 struct aba_link_instructions {
   int planar, typed, general;
 };
-inline constexpr aba_link_instructions aba_unrolled_link{480, 1090, 1460};
+inline constexpr aba_link_instructions aba_unrolled_link{480, 1000, 1460};
 
-/// Unrolled code beyond this many instructions outgrows the instruction
-/// cache (32 KB L1i): the time per link rose by half while the instructions
-/// per link did not. Larger scenes share the steps (articulated_body.hpp).
-inline constexpr int aba_shared_steps_above = 13000;
+/// Unrolled code beyond this many instructions outgrows the processor's
+/// caches of decoded instructions: the time per link rose by half while the
+/// instructions per link did not. Larger scenes share the steps
+/// (articulated_body.hpp). Planar: 13,000 (the earlier machine: unrolled
+/// faster at 32 links, shared at 48; the stop-42 machine: 16 | 24 links).
+/// Spatial: 5,000 (the stop-42 machine, typed and run-time axes alike:
+/// unrolled faster at 5 links, shared from 6; typed links measured 909 and
+/// axis-frame links 1097 instructions a link unrolled). The earlier machine
+/// had the spatial crossover at 8–10 links.
+struct aba_shared_threshold {
+  int planar, spatial;
+};
+inline constexpr aba_shared_threshold aba_shared_steps_above{13000, 5000};
 
 }  // namespace flange::detail
