@@ -19,7 +19,7 @@
 // typed one (a coordinate rotation, or the product of two that a link in its
 // joint's axis frame turns by: axis_frames.hpp). The crossover this gives on
 // chains: 7 links with coordinate or run-time axes (costs.hpp: measured 7
-// with run-time axes and 8 with typed ones, 3 % apart at 7), 13 in a plane.
+// with run-time axes and 8 with typed ones, 3 % apart at 7), 11 in a plane.
 // (Measured with tools/chain_counts.sh; beyond about 6 links Newton–Euler
 // costs more per link than the model says, as its unrolled code outgrows the
 // processor's caches of decoded instructions, while the articulated body

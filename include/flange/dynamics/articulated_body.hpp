@@ -224,25 +224,45 @@ struct articulated_inertia<planar_algebra<K>, T> {
   FLANGE_INLINE static articulated_inertia rigid(const R& r) {
     return {inertia_matrix<A, T>(r)};
   }
-  template <int = -1, int = -1, class Ang, class Lin>
+  /// The algebra's dimension a known-zero angular ZA or linear ZL is (−1: none).
+  static constexpr int zero_dim(int ZA, int ZL) {
+    return ZA == K ? 0 : ZL == (K + 1) % 3 ? 1 : ZL == (K + 2) % 3 ? 2 : -1;
+  }
+  template <int ZA = -1, int ZL = -1, class Ang, class Lin>
   FLANGE_INLINE aba_force<A, T> times(const Ang& al, const Lin& a) const {
-    const auto x = from_dense<A, T>(small::mul(I, to_dense<A, T>(al, a)));
-    return {x.ang, x.lin};
+    constexpr int d = zero_dim(ZA, ZL);
+    const dvec<A, T> x = to_dense<A, T>(al, a);
+    dvec<A, T> y;
+    detail::static_for<3>([&](auto r) FLANGE_INLINE_LAMBDA {
+      constexpr int R = decltype(r)::value;
+      if constexpr (R == d) {
+        y(R) = T(0);
+      } else {
+        constexpr int c0 = d == 0 ? 1 : 0, c1 = d == 2 ? 1 : 2;
+        y(R) = I(R, c0) * x(c0) + I(R, c1) * x(c1);
+        if constexpr (d < 0) y(R) += I(R, 1) * x(1);
+      }
+    });
+    const auto f = from_dense<A, T>(y);
+    return {f.ang, f.lin};
   }
   FLANGE_INLINE T scale(bool ang, bool lin) const {
     return (ang ? I(0, 0) : T(0)) + (lin ? I(1, 1) + I(2, 2) : T(0));
   }
-  template <int = -1, int = -1, std::size_t N>
+  template <int ZA = -1, int ZL = -1, std::size_t N>
   FLANGE_INLINE void subtract(const std::array<aba_force<A, T>, N>& U, const std::array<aba_force<A, T>, N>& W) {
     for (std::size_t k = 0; k < N; ++k)
-      small::sub_outer_sym(I, to_dense<A, T>(U[k].n, U[k].f), to_dense<A, T>(W[k].n, W[k].f));
+      small::sub_outer_sym<zero_dim(ZA, ZL)>(I, to_dense<A, T>(U[k].n, U[k].f), to_dense<A, T>(W[k].n, W[k].f));
   }
   /// Xᵀ·I·X for the link's motion transform X = [[1, 0], [E₂·q, E₂]]
   /// (E₂ the rotation in the plane, q = e_K × p), in blocks: with
   /// h' = E₂ᵀ·h and M' = E₂ᵀ·M·E₂ (M the 2 × 2 block over a_i, a_j),
   ///   θ + 2·h'·q + qᵀ·M'·q,   h' + M'·q,   M'.
-  template <int = -1, int = -1, class Mo>
+  /// Behind a revolute joint (ZA = K) θ and h are known zero: θ' = qᵀ·M'·q
+  /// and h' = M'·q.
+  template <int ZA = -1, int ZL = -1, class Mo>
   FLANGE_INLINE void add_from_child(const articulated_inertia& c, const Mo& m) {
+    constexpr bool turn_only = zero_dim(ZA, ZL) == 0;
     constexpr int i = (K + 1) % 3, j = (K + 2) % 3;
     const auto pair = [](const T& x, const T& y) FLANGE_INLINE_LAMBDA {
       svec<T, A::linear_mask> v;
@@ -250,22 +270,32 @@ struct articulated_inertia<planar_algebra<K>, T> {
       v.template at<j>() = y;
       return v;
     };
-    const auto h = rot_t(m.E(), pair(c.I(1, 0), c.I(2, 0)));
     const auto a0 = rot_t(m.E(), pair(c.I(1, 1), c.I(2, 1))), a1 = rot_t(m.E(), pair(c.I(1, 2), c.I(2, 2)));
     const auto r0 = rot_t(m.E(), pair(a0.template get<i>(), a1.template get<i>()));
     const T m00 = r0.template get<i>(), m01 = r0.template get<j>();
     const T m11 = rot_t(m.E(), pair(a0.template get<j>(), a1.template get<j>())).template get<j>();
-    T th = c.I(0, 0), hi = h.template get<i>(), hj = h.template get<j>();
-    if constexpr (!is_zero_vec<decltype(m.p)>) {
-      const T qi = -m.p.template get<j>(), qj = m.p.template get<i>();
-      const T mqi = m00 * qi + m01 * qj, mqj = m01 * qi + m11 * qj;
-      th += T(2) * (hi * qi + hj * qj) + (qi * mqi + qj * mqj);
-      hi += mqi;
-      hj += mqj;
+    if constexpr (turn_only) {
+      if constexpr (!is_zero_vec<decltype(m.p)>) {
+        const T qi = -m.p.template get<j>(), qj = m.p.template get<i>();
+        const T mqi = m00 * qi + m01 * qj, mqj = m01 * qi + m11 * qj;
+        I(0, 0) += qi * mqi + qj * mqj;
+        I(1, 0) = I(0, 1) += mqi;
+        I(2, 0) = I(0, 2) += mqj;
+      }
+    } else {
+      const auto h = rot_t(m.E(), pair(c.I(1, 0), c.I(2, 0)));
+      T th = c.I(0, 0), hi = h.template get<i>(), hj = h.template get<j>();
+      if constexpr (!is_zero_vec<decltype(m.p)>) {
+        const T qi = -m.p.template get<j>(), qj = m.p.template get<i>();
+        const T mqi = m00 * qi + m01 * qj, mqj = m01 * qi + m11 * qj;
+        th += T(2) * (hi * qi + hj * qj) + (qi * mqi + qj * mqj);
+        hi += mqi;
+        hj += mqj;
+      }
+      I(0, 0) += th;
+      I(1, 0) = I(0, 1) += hi;
+      I(2, 0) = I(0, 2) += hj;
     }
-    I(0, 0) += th;
-    I(1, 0) = I(0, 1) += hi;
-    I(2, 0) = I(0, 2) += hj;
     I(1, 1) += m00;
     I(2, 1) = I(1, 2) += m01;
     I(2, 2) += m11;
@@ -306,11 +336,11 @@ constexpr int aba_unrolled_instructions() {
 /// Whether the per-link steps run as shared functions, one per kind of link
 /// (aba_up_shared, aba_down_shared, and aba_start_shared in space), rather
 /// than unrolled into the pass: when the unrolled code would pass a number of
-/// instructions (costs.hpp: 5,000 in space, 13,000 in a plane). Beyond that
+/// instructions (costs.hpp: 5,000 in space, 7,500 in a plane). Beyond that
 /// it outgrows the processor's caches of decoded instructions, and the time
 /// per link rose by half while the instructions per link did not
 /// (docs/performance.md); below it the calls only cost. This puts the switch
-/// at 6 links in space (typed or run-time axes) and 28 in a plane.
+/// at 6 links in space (typed or run-time axes) and 18 in a plane.
 template <class A, class S>
 constexpr bool aba_shared_steps() {
   return aba_unrolled_instructions<A, S>() >

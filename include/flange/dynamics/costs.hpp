@@ -29,10 +29,12 @@ struct algorithm_costs {
 /// articulated body 436 | 512; typed axes: 497 | 609 ns at 7 | 8 against
 /// 512 | 600). The earlier machine's was 125, unrolled, crossover 12
 /// (docs/performance.md, "Choosing the algorithm"); general rotations
-/// (110) were not measured again.
+/// (110) were not measured again. The planar articulated body, after its own
+/// known zeros, 35 → 31: crossover 11 links, measured between 10 and 12
+/// (Newton–Euler 328 | 507 ns, articulated body 344 | 417).
 template <class A>
 constexpr algorithm_costs costs_for() {
-  if constexpr (A::planar) return {12.8, 3.9, 3.9, 35, 35, 22};
+  if constexpr (A::planar) return {12.8, 3.9, 3.9, 31, 31, 22};
   else return {17.7, 31.7, 20, 110, 75, 22};
 }
 
@@ -42,13 +44,15 @@ constexpr algorithm_costs costs_for() {
 struct aba_link_instructions {
   int planar, typed, general;
 };
-inline constexpr aba_link_instructions aba_unrolled_link{480, 1000, 1460};
+inline constexpr aba_link_instructions aba_unrolled_link{420, 1000, 1460};
 
 /// Unrolled code beyond this many instructions outgrows the processor's
 /// caches of decoded instructions: the time per link rose by half while the
 /// instructions per link did not. Larger scenes share the steps
-/// (articulated_body.hpp). Planar: 13,000 (the earlier machine: unrolled
-/// faster at 32 links, shared at 48; the stop-42 machine: 16 | 24 links).
+/// (articulated_body.hpp). Planar: 7,500 (the stop-42 machine, after the
+/// known zeros: unrolled faster at 16 links, 564 | 609 ns, shared at 20,
+/// 802 | 779; 5,904 and 8,388 instructions unrolled; the earlier machine's
+/// 13,000 had it between 32 and 48).
 /// Spatial: 5,000 (the stop-42 machine, typed and run-time axes alike:
 /// unrolled faster at 5 links, shared from 6; typed links measured 909 and
 /// axis-frame links 1097 instructions a link unrolled). The earlier machine
@@ -56,6 +60,6 @@ inline constexpr aba_link_instructions aba_unrolled_link{480, 1000, 1460};
 struct aba_shared_threshold {
   int planar, spatial;
 };
-inline constexpr aba_shared_threshold aba_shared_steps_above{13000, 5000};
+inline constexpr aba_shared_threshold aba_shared_steps_above{7500, 5000};
 
 }  // namespace flange::detail
