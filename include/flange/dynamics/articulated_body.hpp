@@ -31,6 +31,7 @@
 #include <new>
 #include <tuple>
 #include <type_traits>
+#include <utility>
 
 #include "flange/dynamics/costs.hpp"
 #include "flange/dynamics/forward_dynamics.hpp"
@@ -230,7 +231,8 @@ struct articulated_inertia<planar_algebra<K>, T> {
   }
   template <int ZA = -1, int ZL = -1, class Ang, class Lin>
   FLANGE_INLINE aba_force<A, T> times(const Ang& al, const Lin& a) const {
-    constexpr int d = zero_dim(ZA, ZL);
+    // I·x with row and column d (the known-zero dimension) left out.
+    constexpr int d = zero_dim(ZA, ZL), first = d == 0 ? 1 : 0;
     const dvec<A, T> x = to_dense<A, T>(al, a);
     dvec<A, T> y;
     detail::static_for<3>([&](auto r) FLANGE_INLINE_LAMBDA {
@@ -238,9 +240,11 @@ struct articulated_inertia<planar_algebra<K>, T> {
       if constexpr (R == d) {
         y(R) = T(0);
       } else {
-        constexpr int c0 = d == 0 ? 1 : 0, c1 = d == 2 ? 1 : 2;
-        y(R) = I(R, c0) * x(c0) + I(R, c1) * x(c1);
-        if constexpr (d < 0) y(R) += I(R, 1) * x(1);
+        y(R) = I(R, first) * x(first);
+        detail::static_for<3>([&](auto c) FLANGE_INLINE_LAMBDA {
+          constexpr int C = decltype(c)::value;
+          if constexpr (C > first && C != d) y(R) += I(R, C) * x(C);
+        });
       }
     });
     const auto f = from_dense<A, T>(y);
