@@ -29,12 +29,21 @@
 // relative pose and motion, for recovering a cut joint's internals. scene/joint_check.hpp turns a missing
 // member into one static_assert naming the joint and the member.
 //
-// A joint that moves about (or along) one axis n, fixed in both its frames
-// but known only at run time, may also declare axis_frame = true, n() and
-// motion_in_axis_frame<T, Dir, NeedRotation>(q): its motion in coordinates
-// turned so that n is e_z, which has the typed form of a joint about z. Its
-// link then computes in those coordinates (dynamics/axis_frames.hpp), and
-// the algorithms see a typed motion subspace instead of a dense one.
+// A joint whose rotation turns by one angle φ = q[k] may declare
+// angle_coordinate = k and motion<T, Dir>(q, cos_sin<T>{cos φ, sin φ}): its
+// motion with the cosine and sine given. dynamics/links.hpp then computes
+// every such link's cosine and sine in one call (math/sincos.hpp) instead of
+// a call per link.
+//
+// A joint that turns about one axis n, fixed in both its frames but known
+// only at run time, may also declare axis_frame = true, n() and
+// motion_in_axis_frame<T, Dir, NeedRotation>(q), with
+// motion_in_axis_frame<T, Dir>(q, cos_sin<T>) beside it: its motion in
+// coordinates turned so that n is e_z, which has the typed form of a joint
+// about z, at its angle φ or at φ + θ₀ (a frame turned about the axis by a
+// constant). Its link then computes in those coordinates
+// (dynamics/axis_frames.hpp), and the algorithms see a typed motion subspace
+// instead of a dense one.
 //
 // The motion object m at q, for the link behind the joint (the child):
 //
@@ -62,6 +71,7 @@
 
 #include "flange/core/component.hpp"
 #include "flange/core/frame_kinematics.hpp"
+#include "flange/math/sincos.hpp"
 #include "flange/math/sparse.hpp"
 
 namespace flange {
@@ -129,11 +139,20 @@ concept has_generalized_force = requires(const J& j, const double* p, double* ta
 
 /// Whether a joint offers an axis frame (above): a run-time axis n() its
 /// link may be turned to, and its motion in that frame.
+/// Whether a joint turns by one angle whose cosine and sine may be given
+/// (above).
 template <class J>
-concept axis_framed_joint = requires(const J& j, const double* q) {
+concept angle_joint = requires(const J& j, const double* q, const cos_sin<double>& a) {
+  requires J::angle_coordinate >= 0 && J::angle_coordinate < J::nq;
+  j.template motion<double, 1>(q, a);
+};
+
+template <class J>
+concept axis_framed_joint = angle_joint<J> && requires(const J& j, const double* q, const cos_sin<double>& a) {
   requires J::axis_frame;
   { j.n() } -> std::convertible_to<Vec3d>;
   j.template motion_in_axis_frame<double, 1, true>(q);
+  j.template motion_in_axis_frame<double, 1>(q, a);
 };
 
 /// Whether a joint's normalize(q) changes anything, so that a stepper must

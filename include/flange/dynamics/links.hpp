@@ -9,14 +9,15 @@
 // breadth-first, so a parent precedes its children.
 #pragma once
 #include <array>
-
-#include "flange/detail/inline.hpp"
 #include <tuple>
+#include <type_traits>
 #include <utility>
 
 #include "flange/core/joint.hpp"
+#include "flange/detail/inline.hpp"
 #include "flange/dynamics/algebra.hpp"
 #include "flange/dynamics/model.hpp"
+#include "flange/math/sincos.hpp"
 #include "flange/math/sparse.hpp"
 
 namespace flange::detail {
@@ -208,16 +209,39 @@ FLANGE_INLINE auto link_motion_of(const S& scene, JM jm, ES Es) {
   }
 }
 
-/// Link L's joint's motion at q, in the coordinates link L computes in: in
-/// the joint's axis frame where the link computes in it (axis_frames.hpp),
-/// turned by θ₀ where the link is aligned with its parent.
+/// Whether link L's joint turns by one angle (core/joint.hpp: angle_joint)
+/// whose cosine and sine this motion needs: those links get theirs from one
+/// call for all (link_motions).
+template <class S, int L, bool NeedRotation>
+constexpr bool takes_angle() {
+  return angle_joint<typename link_info<S, L>::joint_type> && NeedRotation;
+}
+/// The angle link L's joint turns by: its angle coordinate, plus θ₀ where the
+/// link is aligned with its parent (axis_frames.hpp).
+template <class T, int L, class S>
+FLANGE_INLINE T link_angle(const S& scene, const T* q) {
+  using LI = link_info<S, L>;
+  const T& phi = q[LI::q + LI::joint_type::angle_coordinate];
+  if constexpr (axis_aligned<S, L>) return phi + T(LI::dir * scene.model().link_align[L].offset);
+  else return phi;
+}
+/// Link L's joint's motion with the cosine and sine of its link_angle given,
+/// in the coordinates link L computes in: in the joint's axis frame where
+/// the link computes in it (axis_frames.hpp).
+template <class T, int L, class S>
+FLANGE_INLINE auto joint_motion_with(const S& scene, const T* q, const cos_sin<T>& a) {
+  using LI = link_info<S, L>;
+  const auto& joint = scene.template component<LI::joint>();
+  if constexpr (axis_framed<S, L>) return joint.template motion_in_axis_frame<T, LI::dir>(q + LI::q, a);
+  else return joint.template motion<T, LI::dir>(q + LI::q, a);
+}
+/// Link L's joint's motion at q, in the coordinates link L computes in.
 template <class T, int L, bool NeedRotation, class S>
 FLANGE_INLINE auto joint_motion_at(const S& scene, const T* q) {
   using LI = link_info<S, L>;
   const auto& joint = scene.template component<LI::joint>();
-  if constexpr (axis_aligned<S, L>)
-    return joint.template motion_in_axis_frame<T, LI::dir, NeedRotation>(
-        q + LI::q, T(LI::dir * scene.model().link_align[L].offset));
+  if constexpr (takes_angle<S, L, NeedRotation>())
+    return joint_motion_with<T, L>(scene, q, cos_sin_of(link_angle<T, L>(scene, q)));
   else if constexpr (axis_framed<S, L>)
     return joint.template motion_in_axis_frame<T, LI::dir, NeedRotation>(q + LI::q);
   else
@@ -294,6 +318,28 @@ constexpr bool need_rotation() {
   }
 }
 
+/// The links that take their angle's cosine and sine from one call
+/// (takes_angle), in order, and each link's place among them (−1: none).
+template <class S, bool HasPositionPass>
+struct angle_links {
+  static constexpr int NL = S::tree.n_links;
+  static constexpr std::array<int, NL> place = [] {
+    std::array<bool, NL> takes{};
+    [&]<int... L>(std::integer_sequence<int, L...>) {
+      ((takes[L + 1] = takes_angle<S, L + 1, need_rotation<S, L + 1, HasPositionPass>()>()), ...);
+    }(std::make_integer_sequence<int, NL - 1>{});
+    std::array<int, NL> r{};
+    int k = 0;
+    for (int L = 0; L < NL; ++L) r[L] = takes[L] ? k++ : -1;
+    return r;
+  }();
+  static constexpr int count = [] {
+    int k = 0;
+    for (const int p : place) k += p >= 0;
+    return k;
+  }();
+};
+
 /// The motions of all links at q, as a tuple (link L at L − 1).
 template <class A, class T, bool HasPositionPass, class S>
 FLANGE_INLINE auto link_motions(const S& scene, const T* q) {
@@ -301,10 +347,28 @@ FLANGE_INLINE auto link_motions(const S& scene, const T* q) {
   // links' offsets and turns: loaded between two calls, they would be kept
   // across the later ones in memory (chain6: 1785 instructions per
   // derivative against 1820).
-  return [&]<int... L>(std::integer_sequence<int, L...>) FLANGE_INLINE_LAMBDA {
-    std::tuple jm{joint_motion_at<T, L + 1, need_rotation<S, L + 1, HasPositionPass>()>(scene, q)...};
-    return std::make_tuple(link_motion_from<A, T, L + 1>(scene, std::move(std::get<L>(jm)))...);
-  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+  using AL = angle_links<S, HasPositionPass>;
+  if constexpr (std::is_same_v<T, double> && AL::count > 0) {
+    // The angles' cosines and sines in one call (math/sincos.hpp), then the
+    // motions from them.
+    cos_sin_batch<AL::count> cs;
+    for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
+      constexpr int L = decltype(l)::value;
+      if constexpr (AL::place[L] >= 0) cs.a[AL::place[L]] = link_angle<T, L>(scene, q);
+    });
+    cs.compute();
+    return [&]<int... L>(std::integer_sequence<int, L...>) FLANGE_INLINE_LAMBDA {
+      return std::make_tuple(link_motion_from<A, T, L + 1>(scene, [&]() FLANGE_INLINE_LAMBDA {
+        if constexpr (AL::place[L + 1] >= 0) return joint_motion_with<T, L + 1>(scene, q, cs[AL::place[L + 1]]);
+        else return joint_motion_at<T, L + 1, need_rotation<S, L + 1, HasPositionPass>()>(scene, q);
+      }())...);
+    }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+  } else {
+    return [&]<int... L>(std::integer_sequence<int, L...>) FLANGE_INLINE_LAMBDA {
+      std::tuple jm{joint_motion_at<T, L + 1, need_rotation<S, L + 1, HasPositionPass>()>(scene, q)...};
+      return std::make_tuple(link_motion_from<A, T, L + 1>(scene, std::move(std::get<L>(jm)))...);
+    }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+  }
 }
 
 }  // namespace flange::detail

@@ -101,21 +101,22 @@ class Cylindrical {
 
   template <class T, int Dir, bool NeedRotation>
   [[nodiscard]] FLANGE_INLINE auto motion(const T* q) const {
+    if constexpr (NeedRotation || !Axis::fixed) return motion<T, Dir>(q, cos_sin_of(q[1]));
+    else return motion<T, Dir>(q, cos_sin<T>{T(1), T(0)});  // never applied (dynamics/links.hpp: need_rotation)
+  }
+  /// It turns by one angle, φ = q[1] (core/joint.hpp): its motion with cos φ
+  /// and sin φ given.
+  static constexpr int angle_coordinate = 1;
+  template <class T, int Dir>
+  [[nodiscard]] FLANGE_INLINE auto motion(const T* q, const cos_sin<T>& a) const {
     detail::cylindrical_motion<T, Axis, Dir> m;
     m.n = axis::signed_unit<T, Axis, Dir>(n_);
     m.p = q[0] * m.n;
     if constexpr (Axis::fixed) {
-      using std::cos;
-      using std::sin;
-      if constexpr (NeedRotation) {
-        m.E.c = cos(q[1]);
-        m.E.s = Dir > 0 ? sin(q[1]) : -sin(q[1]);
-      } else {
-        m.E.c = T(1);  // never applied (dynamics/links.hpp: need_rotation)
-        m.E.s = T(0);
-      }
+      m.E.c = a.c;
+      m.E.s = Dir > 0 ? a.s : -a.s;
     } else {
-      m.E = axis_rotation<T>(m.n.dense(), q[1]);
+      m.E = axis_rotation<T>(m.n.dense(), a);
     }
     return m;
   }

@@ -135,14 +135,21 @@ class Planar {
 
   [[nodiscard]] static std::array<double, 3> neutral() { return {0.0, 0.0, 0.0}; }
 
-  template <class T, int, bool>
+  template <class T, int Dir, bool>
   [[nodiscard]] FLANGE_INLINE auto motion(const T* q) const {
+    return motion<T, Dir>(q, cos_sin_of(q[2]));
+  }
+  /// It turns by one angle, φ = q[2] (core/joint.hpp): its motion with cos φ
+  /// and sin φ given.
+  static constexpr int angle_coordinate = 2;
+  template <class T, int>
+  [[nodiscard]] FLANGE_INLINE auto motion(const T* q, const cos_sin<T>& a) const {
     using M = detail::planar_motion<T, Normal, First>;
     M m;
     m.n = axis::signed_unit<T, Normal, 1>(n_);
     m.ex = axis::signed_unit<T, std::conditional_t<(Normal::fixed && First::fixed), First, axis::any>, 1>(ex_);
     m.ey = detail::planar_second_axis<T, Normal, First>(ey_);
-    m.E = detail::typed_axis_rotation<T, Normal>(m.n, q[2]);
+    m.E = detail::typed_axis_rotation<T, Normal>(m.n, a);
     m.p = q[0] * m.ex + q[1] * m.ey;
     return m;
   }

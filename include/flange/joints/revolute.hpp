@@ -220,30 +220,39 @@ class Revolute {
   /// coordinate-axis rotation are not computed (nothing will apply it).
   template <class T, int Dir, bool NeedRotation>
   [[nodiscard]] FLANGE_INLINE auto motion(const T* q) const {
+    if constexpr (NeedRotation || !Axis::fixed) return motion<T, Dir>(q, cos_sin_of(q[0]));
+    else return motion<T, Dir>(q, cos_sin<T>{T(1), T(0)});  // never applied (links.hpp: need_rotation)
+  }
+  /// Its motion turns by one angle, φ = q[0] (core/joint.hpp): the same motion
+  /// with cos φ and sin φ given, which links.hpp computes for all links at once.
+  static constexpr int angle_coordinate = 0;
+  template <class T, int Dir>
+  [[nodiscard]] FLANGE_INLINE auto motion(const T*, const cos_sin<T>& a) const {
     if constexpr (Axis::fixed) {
-      return coordinate_motion<T, Axis, Dir, NeedRotation>(q[0]);
+      return coordinate_motion<T, Axis, Dir>(a);
     } else {
       detail::revolute_motion<T, Axis, Dir> m;
       m.n_ = axis::signed_unit<T, Axis, Dir>(n_);
-      m.E = axis_rotation<T>(m.n_.dense(), q[0]);
+      m.E = axis_rotation<T>(m.n_.dense(), a);
       return m;
     }
   }
   /// A run-time axis lets its link compute in coordinates turned so that n
   /// is z (dynamics/axis_frames.hpp, core/joint.hpp): there the motion is
-  /// that of a Revolute about z, a 2-D rotation and S = (±e_z, 0).
+  /// that of a Revolute about z, a 2-D rotation and S = (±e_z, 0). Its angle
+  /// may be φ = q[0] plus a constant turn of the frame about the axis
+  /// (axis_frames.hpp), added by the caller.
   static constexpr bool axis_frame = !Axis::fixed;
   template <class T, int Dir, bool NeedRotation>
     requires(!Axis::fixed)
   [[nodiscard]] FLANGE_INLINE auto motion_in_axis_frame(const T* q) const {
-    return coordinate_motion<T, axis::z, Dir, NeedRotation>(q[0]);
+    if constexpr (NeedRotation) return motion_in_axis_frame<T, Dir>(q, cos_sin_of(q[0]));
+    else return motion_in_axis_frame<T, Dir>(q, cos_sin<T>{T(1), T(0)});
   }
-  /// The same at φ = q[0] + offset: a frame turned about the axis by a
-  /// constant angle against the joint's own (axis_frames.hpp).
-  template <class T, int Dir, bool NeedRotation>
+  template <class T, int Dir>
     requires(!Axis::fixed)
-  [[nodiscard]] FLANGE_INLINE auto motion_in_axis_frame(const T* q, const T& offset) const {
-    return coordinate_motion<T, axis::z, Dir, NeedRotation>(q[0] + offset);
+  [[nodiscard]] FLANGE_INLINE auto motion_in_axis_frame(const T*, const cos_sin<T>& a) const {
+    return coordinate_motion<T, axis::z, Dir>(a);
   }
   template <class T>
   void qdot(const T*, const T* v, T* qd) const {
@@ -338,18 +347,11 @@ class Revolute {
     }
   }
 
-  template <class T, class A, int Dir, bool NeedRotation>
-  FLANGE_INLINE static detail::revolute_motion<T, A, Dir> coordinate_motion(const T& phi) {
+  template <class T, class A, int Dir>
+  FLANGE_INLINE static detail::revolute_motion<T, A, Dir> coordinate_motion(const cos_sin<T>& a) {
     detail::revolute_motion<T, A, Dir> m;
-    if constexpr (NeedRotation) {
-      using std::cos;
-      using std::sin;
-      m.E.c = cos(phi);
-      m.E.s = Dir > 0 ? sin(phi) : -sin(phi);
-    } else {
-      m.E.c = T(1);  // never applied (links.hpp: need_rotation)
-      m.E.s = T(0);
-    }
+    m.E.c = a.c;
+    m.E.s = Dir > 0 ? a.s : -a.s;
     return m;
   }
 

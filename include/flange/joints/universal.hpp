@@ -33,11 +33,13 @@ namespace flange {
 namespace detail {
 /// Rotation about a typed axis by φ: a coordinate rotation or a matrix.
 template <class T, class Axis, class N>
+FLANGE_INLINE auto typed_axis_rotation(const N& n, const cos_sin<T>& a) {
+  if constexpr (Axis::fixed) return coordinate_rotation<T, Axis::index>{a.c, a.s};
+  else return Mat3<T>(axis_rotation<T>(n.dense(), a));
+}
+template <class T, class Axis, class N>
 FLANGE_INLINE auto typed_axis_rotation(const N& n, const T& phi) {
-  using std::cos;
-  using std::sin;
-  if constexpr (Axis::fixed) return coordinate_rotation<T, Axis::index>{cos(phi), sin(phi)};
-  else return Mat3<T>(axis_rotation<T>(n.dense(), phi));
+  return typed_axis_rotation<T, Axis>(n, cos_sin_of(phi));
 }
 
 /// Two revolute axes in series: first about a (fixed in the parent side),

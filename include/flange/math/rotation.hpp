@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "flange/detail/inline.hpp"
+#include "flange/math/sincos.hpp"
 #include "flange/math/types.hpp"
 
 namespace flange {
@@ -34,12 +35,12 @@ template <class T>
 }
 
 /// R = n·n' + (1 − n·n')·cos φ − ñ·sin φ, for a unit axis n, written out
-/// element by element (Rodrigues' form transposed).
+/// element by element (Rodrigues' form transposed), from cos φ and sin φ.
 template <class T>
-[[nodiscard]] FLANGE_INLINE Mat3<T> axis_rotation(const Vec3<T>& n, const T& phi) {
-  using std::cos;
-  using std::sin;
-  const T c = cos(phi), s = sin(phi), k = T(1) - c;
+[[nodiscard]] FLANGE_INLINE Mat3<T> axis_rotation(const Vec3<T>& n, const cos_sin<T>& a) {
+  const T& c = a.c;
+  const T& s = a.s;
+  const T k = T(1) - c;
   const T kx = k * n(0), ky = k * n(1), kz = k * n(2);
   const T sx = s * n(0), sy = s * n(1), sz = s * n(2);
   Mat3<T> R;
@@ -47,6 +48,10 @@ template <class T>
   R(1, 0) = ky * n(0) - sz, R(1, 1) = ky * n(1) + c, R(1, 2) = ky * n(2) + sx;
   R(2, 0) = kz * n(0) + sy, R(2, 1) = kz * n(1) - sx, R(2, 2) = kz * n(2) + c;
   return R;
+}
+template <class T>
+[[nodiscard]] FLANGE_INLINE Mat3<T> axis_rotation(const Vec3<T>& n, const T& phi) {
+  return axis_rotation<T>(n, cos_sin_of(phi));
 }
 
 /// ω from ω̃ = R·Ṙ'. Takes the skew part, so a slightly non-orthogonal R
