@@ -79,17 +79,21 @@ FLANGE_INLINE auto from_dense(const dvec<A, T>& x) {
 }
 
 /// A rigid inertia (m, h, I) as a dense matrix of the algebra: (α, a) ↦ (I·α + h × a, m·a + α × h).
+/// Column i is I times the unit motion along dimension i, typed (an axial
+/// vector beside a zero one), so that no product with a zero is computed.
 template <class A, class T, class R>
 FLANGE_INLINE dmat<A, T> inertia_matrix(const R& c) {
   dmat<A, T> I;
-  for (int i = 0; i < algebra_size<A>; ++i) {
-    dvec<A, T> e = zeros<dvec<A, T>>();
-    e(i) = T(1);
-    const auto b = from_dense<A, T>(e);
-    const auto F = inertia_times(c, motion_pair{b.ang, b.lin});
+  detail::static_for<algebra_size<A>>([&](auto ic) FLANGE_INLINE_LAMBDA {
+    constexpr int i = decltype(ic)::value;
+    constexpr auto d = algebra_dims<A>()[i];
+    const auto F = [&]() FLANGE_INLINE_LAMBDA {
+      if constexpr (d.first) return inertia_times(c, motion_pair{axial<T, d.second>(T(1)), zero_vec<T>{}});
+      else return inertia_times(c, motion_pair{zero_vec<T>{}, axial<T, d.second>(T(1))});
+    }();
     const dvec<A, T> col = to_dense<A, T>(F.n, F.f);
     for (int k = 0; k < algebra_size<A>; ++k) I(k, i) = col(k);
-  }
+  });
   return I;
 }
 
@@ -247,8 +251,17 @@ struct articulated_inertia<planar_algebra<K>, T> {
         });
       }
     });
-    const auto f = from_dense<A, T>(y);
-    return {f.ang, f.lin};
+    // Written into the force's components one by one: a copy of the
+    // linear pair went through the stack (two 8-byte stores read back as
+    // one 16-byte load, which stalls).
+    constexpr auto dims = algebra_dims<A>();
+    aba_force<A, T> f;
+    detail::static_for<3>([&](auto k) FLANGE_INLINE_LAMBDA {
+      constexpr auto dk = dims[decltype(k)::value];
+      if constexpr (dk.first) f.n.template at<dk.second>() = y(decltype(k)::value);
+      else f.f.template at<dk.second>() = y(decltype(k)::value);
+    });
+    return f;
   }
   FLANGE_INLINE T scale(bool ang, bool lin) const {
     return (ang ? I(0, 0) : T(0)) + (lin ? I(1, 1) + I(2, 2) : T(0));
