@@ -5,7 +5,9 @@
 // - algorithm_costs (ns) choose the forward-dynamics algorithm
 //   (algorithm.hpp);
 // - aba_link_instructions (instructions) choose whether the articulated
-//   body's steps are unrolled or shared between links (articulated_body.hpp).
+//   body's steps are unrolled or shared between links (articulated_body.hpp);
+// - batch_angles_from chooses whether the links' cosines and sines are
+//   computed in one call (links.hpp).
 //
 // They are kept together because they are one kind of thing, measured with
 // one tool: when the passes change, measure and update them here.
@@ -61,5 +63,14 @@ struct aba_shared_threshold {
   int planar, spatial;
 };
 inline constexpr aba_shared_threshold aba_shared_steps_above{7500, 5000};
+
+/// The fewest angles whose cosines and sines are computed in one call
+/// (links.hpp, math/sincos.hpp) rather than one at a time. One call to the
+/// vector functions has the longer latency, about 24 ns for 1 to 8 angles
+/// where glibc's sincos takes 16 | 18 | 25 | 35 ns for 1 | 2 | 3 | 4 (each
+/// call's angles depending on the previous result; stop-43 machine), while
+/// its throughput is better from one angle (6.3 against 8.6 ns). The paper's
+/// arm (one angle) in one call: its derivative's latency 10 → 31 ns.
+inline constexpr int batch_angles_from = 3;
 
 }  // namespace flange::detail

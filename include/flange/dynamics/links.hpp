@@ -16,6 +16,7 @@
 #include "flange/core/joint.hpp"
 #include "flange/detail/inline.hpp"
 #include "flange/dynamics/algebra.hpp"
+#include "flange/dynamics/costs.hpp"
 #include "flange/dynamics/model.hpp"
 #include "flange/math/sincos.hpp"
 #include "flange/math/sparse.hpp"
@@ -320,6 +321,7 @@ constexpr bool need_rotation() {
 
 /// The links that take their angle's cosine and sine from one call
 /// (takes_angle), in order, and each link's place among them (−1: none).
+/// Fewer than batch_angles_from (costs.hpp) take theirs one at a time.
 template <class S, bool HasPositionPass>
 struct angle_links {
   static constexpr int NL = S::tree.n_links;
@@ -348,7 +350,7 @@ FLANGE_INLINE auto link_motions(const S& scene, const T* q) {
   // across the later ones in memory (chain6: 1785 instructions per
   // derivative against 1820).
   using AL = angle_links<S, HasPositionPass>;
-  if constexpr (std::is_same_v<T, double> && AL::count > 0) {
+  if constexpr (std::is_same_v<T, double> && AL::count >= batch_angles_from) {
     // The angles' cosines and sines in one call (math/sincos.hpp), then the
     // motions from them.
     cos_sin_batch<AL::count> cs;
