@@ -445,28 +445,13 @@ FLANGE_INLINE void aba_start(W& w, const Mo& m, const WP& wP, const rigid_inerti
   ::new (static_cast<void*>(&w.IA)) inertia_type(inertia_type::rigid(link_inertia_of<A, T, HZero, IKind>(I)));
 }
 
-/// One link's step up the tree: U = I_A·S, D⁻¹, u = τ − Sᵀ·p_A, and, with a
-/// parent p (not nullptr), the parent's I_A += Xᵀ·(I_A − U·D⁻¹·Uᵀ)·X and
-/// p_A += Xᵀ·(p_A + I_a·c + U·D⁻¹·u). Its types are the link's kinds, not
-/// the link: links of one kind share one copy of it in a large scene
-/// (aba_shared_steps). Returns D⁻¹'s failing pivot, if any.
-template <class A, class T, bool JointForces, class W, class Mo, class P>
-FLANGE_INLINE pivot_report<T> aba_up(W& w, const Mo& m, P* p, const T* tau) {
+/// A link's step up given its I_A and p_A (its children's shares added):
+/// the parent's shares go to *ip and *fp (nullptr: no parent), which are the
+/// parent's record or, in a block of links (aba_up_block), the values the
+/// next step takes in registers.
+template <class A, class T, bool JointForces, class W, class Mo, class IA_, class PA_, class IP, class FP>
+FLANGE_INLINE pivot_report<T> aba_up_carry(W& w, const Mo& m, IA_& IA, const PA_& pA, IP* ip, FP* fp, const T* tau) {
   constexpr int nv = std::tuple_size_v<decltype(w.b)>;
-  // I_A and p_A were just written by the children's steps, entry by entry.
-  // In a plane (9 and 3 numbers) they are read alone (math/read_alone.hpp)
-  // and worked on in registers, I_a and p_a going to the parent only; in
-  // space (27 and 6) they stay in the link's record, where they are worked
-  // on in place: copied out, they spilled (16-link chain, run-time axes:
-  // ... ns).
-  auto&& IA = [&]() FLANGE_INLINE_LAMBDA -> decltype(auto) {
-    if constexpr (A::planar) return read_alone(w.IA);
-    else return (w.IA);
-  }();
-  auto&& pA = [&]() FLANGE_INLINE_LAMBDA -> decltype(auto) {
-    if constexpr (A::planar) return read_alone(w.pA);
-    else return (w.pA);
-  }();
   // U = I_A·S, D⁻¹, u, U·D⁻¹: this step's own; the step down needs only b and G.
   std::array<aba_force<A, T>, nv> U, UDinv;
   [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
@@ -500,7 +485,7 @@ FLANGE_INLINE pivot_report<T> aba_up(W& w, const Mo& m, P* p, const T* tau) {
     const auto g = carry_up(m, force_pair{UDinv[i].n, UDinv[i].f});
     w.G[i] = as_force<A, T>(g.n, g.f);
   }
-  if constexpr (!std::is_same_v<P, std::nullptr_t>) {
+  if constexpr (!std::is_same_v<IP, std::nullptr_t>) {
     // I_a = I_A − U·D⁻¹·Uᵀ; p_a = p_A + I_a·c + U·D⁻¹·u
     constexpr auto Z = known_zero_dims<Mo, nv>();
     IA.template subtract<Z.first, Z.second>(UDinv, U);
@@ -511,18 +496,47 @@ FLANGE_INLINE pivot_report<T> aba_up(W& w, const Mo& m, P* p, const T* tau) {
       pn = pn + u[k] * UDinv[k].n;
       pf = pf + u[k] * UDinv[k].f;
     }
-    p->IA.template add_from_child<Z.first, Z.second>(IA, m);
+    ip->template add_from_child<Z.first, Z.second>(IA, m);
     const auto up = carry_up(m, force_pair{pn, pf});
-    p->pA = as_force<A, T>(p->pA.n + up.n, p->pA.f + up.f);
+    *fp = as_force<A, T>(fp->n + up.n, fp->f + up.f);
   }
   return {};
 }
 
+/// One link's step up the tree: U = I_A·S, D⁻¹, u = τ − Sᵀ·p_A, the step
+/// down's b and G, and, with a parent p (not nullptr), the parent's
+/// I_A += Xᵀ·(I_A − U·D⁻¹·Uᵀ)·X and p_A += Xᵀ·(p_A + I_a·c + U·D⁻¹·u). Its
+/// types are the link's kinds, not the link: links of one kind share one copy
+/// of it in a large scene (aba_shared_steps). Returns D⁻¹'s failing pivot,
+/// if any.
+template <class A, class T, bool JointForces, class W, class Mo, class P>
+FLANGE_INLINE pivot_report<T> aba_up(W& w, const Mo& m, P* p, const T* tau) {
+  // I_A and p_A were just written by the children's steps, entry by entry.
+  // In a plane (9 and 3 numbers) they are read alone (math/read_alone.hpp)
+  // and worked on in registers, I_a and p_a going to the parent only; in
+  // space (27 and 6) they stay in the link's record, where they are worked
+  // on in place: copied out, they spilled (16-link chain, run-time axes:
+  // 1134 against 1081 ns).
+  auto&& IA = [&]() FLANGE_INLINE_LAMBDA -> decltype(auto) {
+    if constexpr (A::planar) return read_alone(w.IA);
+    else return (w.IA);
+  }();
+  auto&& pA = [&]() FLANGE_INLINE_LAMBDA -> decltype(auto) {
+    if constexpr (A::planar) return read_alone(w.pA);
+    else return (w.pA);
+  }();
+  if constexpr (std::is_same_v<P, std::nullptr_t>)
+    return aba_up_carry<A, T, JointForces>(w, m, IA, pA, p, p, tau);
+  else return aba_up_carry<A, T, JointForces>(w, m, IA, pA, &p->IA, &p->pA, tau);
+}
+
 /// One link's step down the tree from its parent's acceleration aP:
-/// a' = X·a_P + c, v̇ = D⁻¹·(u − Uᵀ·a') into vdot, and, for a link with
-/// children, a = a' + S·v̇. Shared between links of one kind like aba_up.
-template <class A, class T, bool HasChildren, class W, class Mo, class AP>
-FLANGE_INLINE void aba_down(W& w, const Mo& m, const AP& aP, T* vdot) {
+/// v̇ = D⁻¹·(u − Uᵀ·a') into vdot, a' = X·a_P + c, and, for a link with
+/// children, returns a = a' + S·v̇, kept in its record if StoreA (a block of
+/// links, aba_down_block, hands it to the next step in registers). Shared
+/// between links of one kind like aba_up.
+template <class A, class T, bool HasChildren, bool StoreA = HasChildren, class W, class Mo, class AP>
+FLANGE_INLINE auto aba_down(W& w, const Mo& m, const AP& aP, T* vdot) {
   constexpr int nv = std::tuple_size_v<decltype(w.b)>;
   // v̇ = D⁻¹·(u − Uᵀ·a') with a' = X·a_P + c, as b − Gᵀ·a_P (aba_link): the
   // chain of accelerations that runs down a long chain link after link
@@ -544,8 +558,71 @@ FLANGE_INLINE void aba_down(W& w, const Mo& m, const AP& aP, T* vdot) {
         al = fit<A::linear_mask>(al + acc[K] * m.template col<K>().lin)),
        ...);
     }(std::make_integer_sequence<int, nv>{});
-    w.a = {an, al};
+    const aba_motion<A, T> a{an, al};
+    if constexpr (StoreA) w.a = a;
+    return a;
+  } else {
+    return 0;
   }
+}
+
+/// The steps up and down of a block of R links in a row (aba_blocks): link
+/// k's parent is link k − 1, the first one's is p (or aP), and links of a
+/// block have one kind. One step hands the next its result in registers
+/// (I_A and p_A up, a down) where separate steps pass them through memory,
+/// and one call does R links' steps. wp and mp list the links' records and
+/// motions, first to last; the step up runs last to first. The failing
+/// pivot's index counts the block's rates from the first link's.
+template <class A, class T, bool HZero, int IKind, bool Torque, bool Force, int R, class W, class Mo, class WP>
+FLANGE_INLINE void aba_start_block(W* const* wp, const Mo* const* mp, const WP& wP, const rigid_inertia<double>* I,
+                                   const T* v, const Vec3<T>* n_ext, const Vec3<T>* f_ext) {
+  constexpr int nv = std::tuple_size_v<decltype(wp[0]->b)>;
+  aba_start<A, T, HZero, IKind, Torque, Force>(*wp[0], *mp[0], wP, I[0], v, n_ext[0], f_ext[0]);
+  [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
+    (aba_start<A, T, HZero, IKind, Torque, Force>(*wp[K + 1], *mp[K + 1], wp[K]->w, I[K + 1], v + (K + 1) * nv,
+                                                  n_ext[K + 1], f_ext[K + 1]),
+     ...);
+  }(std::make_integer_sequence<int, R - 1>{});
+}
+template <class A, class T, bool JointForces, int R, class W, class Mo, class P>
+FLANGE_INLINE pivot_report<T> aba_up_block(W* const* wp, const Mo* const* mp, P* p, const T* tau) {
+  constexpr int nv = std::tuple_size_v<decltype(wp[0]->b)>;
+  auto IA = read_alone(wp[R - 1]->IA);
+  auto pA = read_alone(wp[R - 1]->pA);
+  pivot_report<T> piv{};
+  const bool ok = [&]<int... J>(std::integer_sequence<int, J...>) FLANGE_INLINE_LAMBDA {
+    return ([&]() FLANGE_INLINE_LAMBDA {
+      constexpr int k = R - 1 - J;
+      if constexpr (k > 0) {
+        auto IAn = read_alone(wp[k - 1]->IA);
+        auto pAn = read_alone(wp[k - 1]->pA);
+        piv = aba_up_carry<A, T, JointForces>(*wp[k], *mp[k], IA, pA, &IAn, &pAn, tau + k * nv);
+        IA = IAn;
+        pA = pAn;
+      } else if constexpr (std::is_same_v<P, std::nullptr_t>) {
+        piv = aba_up_carry<A, T, JointForces>(*wp[0], *mp[0], IA, pA, p, p, tau);
+      } else {
+        piv = aba_up_carry<A, T, JointForces>(*wp[0], *mp[0], IA, pA, &p->IA, &p->pA, tau);
+      }
+      if (piv.index >= 0) [[unlikely]] {
+        piv.index += k * nv;
+        return false;
+      }
+      return true;
+    }() && ...);
+  }(std::make_integer_sequence<int, R>{});
+  if (!ok) [[unlikely]]
+    return piv;
+  return {};
+}
+template <class A, class T, bool LastHasChildren, int R, class W, class Mo, class AP>
+FLANGE_INLINE void aba_down_block(W* const* wp, const Mo* const* mp, const AP& aP, T* vdot) {
+  constexpr int nv = std::tuple_size_v<decltype(wp[0]->b)>;
+  auto a = aba_down<A, T, true, false>(*wp[0], *mp[0], aP, vdot);
+  [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
+    ((a = aba_down<A, T, true, false>(*wp[K + 1], *mp[K + 1], a, vdot + (K + 1) * nv)), ...);
+  }(std::make_integer_sequence<int, R - 2>{});
+  aba_down<A, T, LastHasChildren>(*wp[R - 1], *mp[R - 1], a, vdot + (R - 1) * nv);
 }
 
 /// The same steps as functions of their own, one per combination of kinds:
@@ -564,6 +641,84 @@ template <class A, class T, bool JointForces, class W, class Mo, class P>
 template <class A, class T, bool HasChildren, class W, class Mo, class AP>
 [[gnu::noinline]] void aba_down_shared(W& w, const Mo& m, const AP& aP, T* vdot) {
   aba_down<A, T, HasChildren>(w, m, aP, vdot);
+}
+template <class A, class T, bool HZero, int IKind, bool Torque, bool Force, int R, class W, class Mo, class WP>
+[[gnu::noinline]] void aba_start_block_shared(W* const* wp, const Mo* const* mp, const WP& wP,
+                                              const rigid_inertia<double>* I, const T* v, const Vec3<T>* n_ext,
+                                              const Vec3<T>* f_ext) {
+  aba_start_block<A, T, HZero, IKind, Torque, Force, R>(wp, mp, wP, I, v, n_ext, f_ext);
+}
+template <class A, class T, bool JointForces, int R, class W, class Mo, class P>
+[[gnu::noinline]] pivot_report<T> aba_up_block_shared(W* const* wp, const Mo* const* mp, P* p, const T* tau) {
+  return aba_up_block<A, T, JointForces, R>(wp, mp, p, tau);
+}
+template <class A, class T, bool LastHasChildren, int R, class W, class Mo, class AP>
+[[gnu::noinline]] void aba_down_block_shared(W* const* wp, const Mo* const* mp, const AP& aP, T* vdot) {
+  aba_down_block<A, T, LastHasChildren, R>(wp, mp, aP, vdot);
+}
+
+/// The scene's links in blocks for the steps up and down (aba_up_block):
+/// runs of at most MaxLen links in a row, each link the only child of the one
+/// before it, of one kind (record and motion types, inertia kinds, loads),
+/// their rates one after another, none freeing every direction. Each unit is (start, len); a unit
+/// of one link runs the link's own step.
+template <class A, class S, class T, int MaxLen>
+struct aba_blocks {
+  static constexpr int NL = S::tree.n_links;
+  using WS = typename aba_workspace<A, S, T>::type;
+  using MS = std::remove_cvref_t<decltype(algebra_motions<A>(std::declval<const S&>(), std::declval<const T*>()))>;
+  template <int L>
+  static constexpr bool frees_all = link_info<S, L>::parent != 0 && link_info<S, L>::nv == algebra_size<A>;
+  /// Whether link L can follow link L − 1 in a block.
+  template <int L>
+  static constexpr bool joins() {
+    if constexpr (L < 2) {
+      return false;
+    } else {
+      using LI = link_info<S, L>;
+      using LP = link_info<S, L - 1>;
+      constexpr auto K = inertia_kinds<S>::value;
+      constexpr auto F = load_flags<S>::value;
+      return LI::parent == L - 1 && children<S, L - 1>().size() == 1 && LI::v == LP::v + LP::nv && !frees_all<L> &&
+             !frees_all<L - 1> && std::is_same_v<std::tuple_element_t<L - 1, WS>, std::tuple_element_t<L - 2, WS>> &&
+             std::is_same_v<std::tuple_element_t<L - 1, MS>, std::tuple_element_t<L - 2, MS>> && K.h_zero[L] == K.h_zero[L - 1] &&
+             K.I_kind[L] == K.I_kind[L - 1] && F.torque[L] == F.torque[L - 1] && F.force[L] == F.force[L - 1];
+    }
+  }
+  struct table {
+    std::array<int, NL> start{}, len{};
+    int n = 0;
+  };
+  static constexpr table value = [] {
+    constexpr auto j = []<int... I>(std::integer_sequence<int, I...>) {
+      return std::array<bool, NL>{joins<I>()...};
+    }(std::make_integer_sequence<int, NL>{});
+    table t{};
+    for (int L = 1; L < NL;) {
+      int len = 1;
+      while (L + len < NL && len < MaxLen && j[L + len]) ++len;
+      t.start[t.n] = L;
+      t.len[t.n] = len;
+      ++t.n;
+      L += len;
+    }
+    return t;
+  }();
+};
+
+/// f(integral_constant<U>) for the units U = 0 … N − 1 (Reverse: N − 1 … 0),
+/// each its own function in a large scene, as for_links_split.
+template <class S, int N, bool Reverse = false, class F>
+FLANGE_INLINE void for_units_split(F&& f) {
+  [&]<int... U>(std::integer_sequence<int, U...>) FLANGE_INLINE_LAMBDA {
+    if constexpr (!split_links<S>) {
+      if constexpr (Reverse) (f(std::integral_constant<int, N - 1 - U>{}), ...);
+      else (f(std::integral_constant<int, U>{}), ...);
+    } else {
+      if constexpr (Reverse) (link_step<N - 1 - U>(f), ...);
+      else (link_step<U>(f), ...);
+    }
+  }(std::make_integer_sequence<int, N>{});
 }
 
 }  // namespace detail
@@ -587,31 +742,60 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
   gather_external<A>(scene, t, xs, motions, pose_motions<A>(scene, q, motions), n_ext, f_ext);
   std::array<T, S::n_v> tau;
   if constexpr (has_joint_forces<S>()) joint_forces(scene, t, xs, tau.data());
+  // Each pass runs a link at a time, or blocks of links in a row when the
+  // steps are shared (aba_blocks).
+  using blocks =
+      aba_blocks<A, S, T, !shared ? 1 : A::planar ? aba_block_links.planar : aba_block_links.spatial>;
+  constexpr auto B = blocks::value;
+  // The links of block U, first to last: their records and motions.
+  const auto block_links = [&](auto u) FLANGE_INLINE_LAMBDA {
+    constexpr int L0 = B.start[decltype(u)::value], R = B.len[decltype(u)::value];
+    using W = std::tuple_element_t<L0 - 1, typename blocks::WS>;
+    using Mo = std::tuple_element_t<L0 - 1, typename blocks::MS>;
+    return [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
+      return std::pair{std::array<W*, R>{&std::get<L0 - 1 + K>(ws)...},
+                       std::array<const Mo*, R>{&std::get<L0 - 1 + K>(motions)...}};
+    }(std::make_integer_sequence<int, R>{});
+  };
   // Down the tree, parents first: each link's ω, c, p_A and own inertia
-  // (aba_start). Shared only in space: a link's start step in a plane is a
-  // few dozen instructions, less than its call costs (planar 48-link chain:
-  // 2.1 µs unrolled, 2.2–2.3 shared; spatial 16 and 32 links with the step
-  // shared: 7–15 % faster, tools/chain_counts.sh).
+  // (aba_start). A link alone shares its step only in space: in a plane the
+  // step is a few dozen instructions, less than its call costs (planar
+  // 48-link chain: 2.1 µs unrolled, 2.2–2.3 shared; spatial 16 and 32 links
+  // with the step shared: 7–15 % faster, tools/chain_counts.sh).
   constexpr bool shared_start = shared && !A::planar;
-  for_links_split<S>([&](auto l) FLANGE_INLINE_LAMBDA {
+  constexpr auto F = load_flags<S>::value;
+  constexpr auto K = inertia_kinds<S>::value;
+  const auto parent_omega = [&](auto l) FLANGE_INLINE_LAMBDA {  // the World's is zero
+    using LI = link_info<S, decltype(l)::value>;
+    if constexpr (LI::parent != 0) return std::get<LI::parent - 1>(ws).w;
+    else return zero_vec<T>{};
+  };
+  const auto start_link = [&](auto l) FLANGE_INLINE_LAMBDA {
     constexpr int L = decltype(l)::value;
     using LI = link_info<S, L>;
-    constexpr auto F = load_flags<S>::value;
     auto& w = std::get<L - 1>(ws);
-    const auto wP = [&]() FLANGE_INLINE_LAMBDA {  // the parent's ω (the World's is zero)
-      if constexpr (LI::parent != 0) return std::get<LI::parent - 1>(ws).w;
-      else return zero_vec<T>{};
-    }();
-    constexpr auto K = inertia_kinds<S>::value;
+    const auto wP = parent_omega(l);
     const auto& I = scene.model().link[L];
     const auto& m = std::get<L - 1>(motions);
     if constexpr (shared_start)
       aba_start_shared<A, T, K.h_zero[L], K.I_kind[L], F.torque[L], F.force[L]>(w, m, wP, I, v + LI::v, n_ext[L],
                                                                                f_ext[L]);
     else aba_start<A, T, K.h_zero[L], K.I_kind[L], F.torque[L], F.force[L]>(w, m, wP, I, v + LI::v, n_ext[L], f_ext[L]);
+  };
+  for_units_split<S, B.n>([&](auto u) FLANGE_INLINE_LAMBDA {
+    constexpr int L0 = B.start[decltype(u)::value], R = B.len[decltype(u)::value];
+    if constexpr (R == 1) {
+      start_link(std::integral_constant<int, L0>{});
+    } else {
+      using LI = link_info<S, L0>;
+      const auto [wp, mp] = block_links(u);
+      aba_start_block_shared<A, T, K.h_zero[L0], K.I_kind[L0], F.torque[L0], F.force[L0], R>(
+          wp.data(), mp.data(), parent_omega(std::integral_constant<int, L0>{}), &scene.model().link[L0], v + LI::v, &n_ext[L0], &f_ext[L0]);
+    }
   });
   // Up the tree, children first.
-  for_links_split<S, true>([&](auto l) FLANGE_INLINE_LAMBDA {
+  constexpr bool jf = has_joint_forces<S>();
+  const auto up_link = [&](auto l) FLANGE_INLINE_LAMBDA {
     constexpr int L = decltype(l)::value;
     using LI = link_info<S, L>;
     constexpr int nv = LI::nv;
@@ -629,7 +813,6 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
       if constexpr (LI::parent != 0 && !frees_all) return &std::get<LI::parent - 1>(ws);
       else return static_cast<std::nullptr_t*>(nullptr);
     }();
-    constexpr bool jf = has_joint_forces<S>();
     pivot_report<T> piv;
     if constexpr (shared) piv = aba_up_shared<A, T, jf>(w, m, parent, tau.data() + LI::v);
     else piv = aba_up<A, T, jf>(w, m, parent, tau.data() + LI::v);
@@ -650,21 +833,44 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
       const auto up = carry_up(m, force_pair{pa.ang, pa.lin});
       p.pA = as_force<A, T>(p.pA.n + up.n, p.pA.f + up.f);
     }
+  };
+  for_units_split<S, B.n, true>([&](auto u) FLANGE_INLINE_LAMBDA {
+    constexpr int L0 = B.start[decltype(u)::value], R = B.len[decltype(u)::value];
+    if constexpr (R == 1) {
+      up_link(std::integral_constant<int, L0>{});
+    } else {
+      using LI = link_info<S, L0>;
+      const auto [wp, mp] = block_links(u);
+      auto* parent = [&]() FLANGE_INLINE_LAMBDA {
+        if constexpr (LI::parent != 0) return &std::get<LI::parent - 1>(ws);
+        else return static_cast<std::nullptr_t*>(nullptr);
+      }();
+      const auto piv = aba_up_block_shared<A, T, jf, R>(wp.data(), mp.data(), parent, tau.data() + LI::v);
+      if (piv.index >= 0) [[unlikely]]
+        singular_mass_matrix<S>(pivot_report<T>{LI::v + piv.index, piv.d, piv.scale}, t, q, v);
+    }
   });
   // Down the tree, parents first: a' = X·a_P + c, v̇ = D⁻¹·(u − Uᵀ·a'), a = a' + S·v̇.
   const auto base = base_kinematics<A, T>(scene);
-  for_links_split<S>([&](auto l) FLANGE_INLINE_LAMBDA {
-    constexpr int L = decltype(l)::value;
-    using LI = link_info<S, L>;
-    auto& w = std::get<L - 1>(ws);
-    const auto& m = std::get<L - 1>(motions);
-    constexpr bool has_children = children<S, L>().size() > 0;
-    const auto call = [&](const auto& aP) FLANGE_INLINE_LAMBDA {
+  const auto parent_acceleration = [&](auto l) FLANGE_INLINE_LAMBDA {
+    using LI = link_info<S, decltype(l)::value>;
+    if constexpr (LI::parent != 0) return std::get<LI::parent - 1>(ws).a;
+    else return motion_pair{base.wd, base.a};
+  };
+  for_units_split<S, B.n>([&](auto u) FLANGE_INLINE_LAMBDA {
+    constexpr int L0 = B.start[decltype(u)::value], R = B.len[decltype(u)::value];
+    using LI = link_info<S, L0>;
+    constexpr bool has_children = children<S, L0 + R - 1>().size() > 0;
+    const auto aP = parent_acceleration(std::integral_constant<int, L0>{});
+    if constexpr (R == 1) {
+      auto& w = std::get<L0 - 1>(ws);
+      const auto& m = std::get<L0 - 1>(motions);
       if constexpr (shared) aba_down_shared<A, T, has_children>(w, m, aP, vdot + LI::v);
       else aba_down<A, T, has_children>(w, m, aP, vdot + LI::v);
-    };
-    if constexpr (LI::parent != 0) call(std::get<LI::parent - 1>(ws).a);
-    else call(motion_pair{base.wd, base.a});
+    } else {
+      const auto [wp, mp] = block_links(u);
+      aba_down_block_shared<A, T, has_children, R>(wp.data(), mp.data(), aP, vdot + LI::v);
+    }
   });
 }
 

@@ -6,6 +6,8 @@
 //   (algorithm.hpp);
 // - aba_link_instructions (instructions) choose whether the articulated
 //   body's steps are unrolled or shared between links (articulated_body.hpp);
+// - aba_block_links chooses how many links in a row run their shared steps
+//   as one (articulated_body.hpp);
 // - batch_angles_from chooses whether the links' cosines and sines are
 //   computed in one call (links.hpp).
 //
@@ -63,6 +65,19 @@ struct aba_shared_threshold {
   int planar, spatial;
 };
 inline constexpr aba_shared_threshold aba_shared_steps_above{7500, 5000};
+
+/// The most links in a row whose shared steps run as one
+/// (articulated_body.hpp, aba_blocks): each step hands the next its result
+/// in registers, not through memory, and one call does them all. Planar: 8
+/// (32 | 64-link chains, ns: 4 links 839 | 1572, 8 links 808 | 1522, 16
+/// links 807 | 1557; without blocks 889 | 1913). Spatial: none, 1 (16-link
+/// chain, run-time axes: 1070 ns without, 1407 in blocks of 4, 1812 of 8:
+/// a spatial step is about a thousand instructions, and a block of them
+/// outgrows the caches the sharing is for).
+struct aba_block_length {
+  int planar, spatial;
+};
+inline constexpr aba_block_length aba_block_links{8, 1};
 
 /// The fewest angles whose cosines and sines are computed in one call
 /// (links.hpp, math/sincos.hpp) rather than one at a time. One call to the

@@ -1,0 +1,107 @@
+// The articulated body's blocks (dynamics/articulated_body.hpp,
+// aba_up_block): in a large scene, links in a row of one kind run their
+// steps up and down as one, each step handing the next its articulated
+// inertia, bias force or acceleration in registers (planar scenes; a
+// spatial link's steps run alone, costs.hpp). Chains of 13 links computed in
+// the shared form (planar: in blocks), unrolled and by Newton–Euler + M,
+// which shares none of the passes; and a singular pivot inside a block,
+// reported at its own joint.
+#include <catch2/catch.hpp>
+#include <flange/dynamics/forward_dynamics.hpp>
+#include <flange/equations_of_motion.hpp>
+#include <flange/models/chain.hpp>
+
+#include "random_params.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+#include <vector>
+
+using namespace flange;
+
+namespace {
+
+constexpr int N = 13;
+
+/// The longest block the shared form runs for scene S (costs.hpp).
+template <class S>
+constexpr int block_links = algebra_t<S>::planar ? detail::aba_block_links.planar : detail::aba_block_links.spatial;
+
+/// The block lengths the shared form runs for scene S.
+template <class S>
+std::vector<int> block_lengths() {
+  using blocks = detail::aba_blocks<algebra_t<S>, S, double, block_links<S>>;
+  std::vector<int> r;
+  for (int u = 0; u < blocks::value.n; ++u) r.push_back(blocks::value.len[u]);
+  return r;
+}
+
+/// The largest disagreement of the blocks (shared) and of the unrolled form
+/// with Newton–Euler + M, relative to the largest |v̇|, over random states.
+template <class S>
+double worst_disagreement(const S& s) {
+  constexpr int nq = S::n_q, nv = S::n_v;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-2, 2);
+  double worst = 0;
+  for (int k = 0; k < 30; ++k) {
+    std::array<double, nq> q;
+    std::array<double, nv> v, ref, unrolled, blocks;
+    for (auto& x : q) x = u(rng);
+    for (auto& x : v) x = u(rng);
+    accelerations_newton_euler(s, 0.1, q.data(), v.data(), ref.data());
+    accelerations_articulated_body<aba_steps::unrolled>(s, 0.1, q.data(), v.data(), unrolled.data());
+    accelerations_articulated_body<aba_steps::shared>(s, 0.1, q.data(), v.data(), blocks.data());
+    double scale = 1;
+    for (const double x : ref) scale = std::max(scale, std::abs(x));
+    for (int i = 0; i < nv; ++i)
+      worst = std::max({worst, std::abs(unrolled[i] - ref[i]) / scale, std::abs(blocks[i] - ref[i]) / scale});
+  }
+  return worst;
+}
+// Round-off of either algorithm, amplified by the mass matrix's condition,
+// as in known_zeros_test and planar_test.
+constexpr double round_off = 1e-11;
+
+template <template <int> class Axes>
+void check_chain(const char* what) {
+  std::mt19937 rng(3);
+  const auto c = models::chain<N, Axes>(test::chain_params<N>(rng));
+  using S = std::remove_cvref_t<decltype(c)>;
+  // Links 2 … 13 are of one kind (link 1 hangs on the World): the shared
+  // form runs them in blocks of the longest length (planar: 8 and 4).
+  const auto lengths = block_lengths<S>();
+  INFO(what);
+  REQUIRE(lengths.size() >= 2);
+  CHECK(*std::max_element(lengths.begin(), lengths.end()) == block_links<S>);
+  CHECK(std::accumulate(lengths.begin(), lengths.end(), 0) == N);
+  const double w = worst_disagreement(c);
+  INFO("worst |Δv̇| / max|v̇| = " << w);
+  CHECK(w < round_off);
+}
+
+}  // namespace
+
+TEST_CASE("chains computed in blocks (and shared steps) agree with the unrolled steps and with Newton–Euler + M") {
+  check_chain<models::planar_axes>("planar chain");
+  check_chain<models::runtime_axes>("spatial chain, run-time axes");
+}
+
+TEST_CASE("a massless last link inside a block is a singular pivot at its own joint") {
+  std::mt19937 rng(3);
+  auto p = test::chain_params<N>(rng);
+  p.m[N - 1] = 0;
+  p.J[N - 1].setZero();
+  const auto c = models::chain<N, models::planar_axes>(p);
+  using S = std::remove_cvref_t<decltype(c)>;
+  REQUIRE(block_lengths<S>().back() > 1);  // the last link is not alone
+  std::array<double, S::n_q> q{};
+  std::array<double, S::n_v> v{}, vd{};
+  for (int i = 0; i < S::n_q; ++i) q[i] = 0.1 * i;
+  using Catch::Matchers::Contains;
+  CHECK_THROWS_WITH(accelerations_articulated_body<aba_steps::shared>(c, 0.0, q.data(), v.data(), vd.data()),
+                    Contains("singular mass matrix") && Contains("joint \"j12\" (v[12])"));
+  CHECK_THROWS_WITH(accelerations_articulated_body<aba_steps::unrolled>(c, 0.0, q.data(), v.data(), vd.data()),
+                    Contains("singular mass matrix") && Contains("joint \"j12\" (v[12])"));
+}
