@@ -4,16 +4,19 @@
 // inertia, bias force or acceleration in registers (planar scenes; a
 // spatial link's steps run alone, costs.hpp). Chains of 13 links computed in
 // the shared form (planar: in blocks), unrolled and by Newton–Euler + M,
-// which shares none of the passes; and a singular pivot inside a block,
-// reported at its own joint.
+// which shares none of the passes; a singular pivot inside a block,
+// reported at its own joint; and the step down's two forms (costs.hpp,
+// aba_down_early): early on a chain, late on the legged tree.
 #include <catch2/catch.hpp>
 #include <flange/dynamics/forward_dynamics.hpp>
 #include <flange/equations_of_motion.hpp>
 #include <flange/models/chain.hpp>
+#include <flange/models/legged.hpp>
 
 #include "random_params.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -104,4 +107,39 @@ TEST_CASE("a massless last link inside a block is a singular pivot at its own jo
                     Contains("singular mass matrix") && Contains("joint \"j12\" (v[12])"));
   CHECK_THROWS_WITH(accelerations_articulated_body<aba_steps::unrolled>(c, 0.0, q.data(), v.data(), vd.data()),
                     Contains("singular mass matrix") && Contains("joint \"j12\" (v[12])"));
+}
+
+TEST_CASE("the step down is early on a chain and late on a branched tree, and both agree with Newton–Euler + M") {
+  std::mt19937 rng(3);
+  const auto c = models::chain<N, models::runtime_axes>(test::chain_params<N>(rng));
+  const auto t = models::legged<4, 4>();
+  using C = std::remove_cvref_t<decltype(c)>;
+  using L = std::remove_cvref_t<decltype(t)>;
+  STATIC_REQUIRE(detail::aba_workspace<algebra_t<C>, C, double>::early);
+  // 17 links (the trunk and four legs of four), the deepest 5 deep.
+  STATIC_REQUIRE(detail::tree_depth<L>() == 5);
+  STATIC_REQUIRE(!detail::aba_workspace<algebra_t<L>, L, double>::early);
+  // The base's quaternion must be a unit one: worst_disagreement draws q
+  // freely, so compare at normalised states here.
+  constexpr int nq = L::n_q, nv = L::n_v;
+  std::uniform_real_distribution<double> u(-2, 2);
+  double worst = 0;
+  for (int k = 0; k < 20; ++k) {
+    std::array<double, nq> q;
+    std::array<double, nv> v, ref, unrolled, shared;
+    for (auto& x : q) x = u(rng);
+    for (auto& x : v) x = u(rng);
+    double n2 = 0;
+    for (int i = 3; i < 7; ++i) n2 += q[i] * q[i];
+    for (int i = 3; i < 7; ++i) q[i] /= std::sqrt(n2);
+    accelerations_newton_euler(t, 0.1, q.data(), v.data(), ref.data());
+    accelerations_articulated_body<aba_steps::unrolled>(t, 0.1, q.data(), v.data(), unrolled.data());
+    accelerations_articulated_body<aba_steps::shared>(t, 0.1, q.data(), v.data(), shared.data());
+    double scale = 1;
+    for (const double x : ref) scale = std::max(scale, std::abs(x));
+    for (int i = 0; i < nv; ++i)
+      worst = std::max({worst, std::abs(unrolled[i] - ref[i]) / scale, std::abs(shared[i] - ref[i]) / scale});
+  }
+  INFO("worst |Δv̇| / max|v̇| = " << worst);
+  CHECK(worst < round_off);
 }

@@ -9,10 +9,13 @@
 // articulated_shared (the articulated body with its per-link steps forced
 // into one form, dynamics/articulated_body.hpp: aba_steps).
 //
-// Compile-time choices: -DPROBE_N=<links> and -DPROBE_AXES=runtime|typed|planar.
+// Compile-time choices: -DPROBE_N=<links> and -DPROBE_AXES=runtime|typed|planar,
+// or tree: the scale benchmark's floating tree, models::legged<4, N / 4>.
 #include <flange/dynamics/other_algorithm.hpp>
 #include <flange/flange.hpp>
+#include <flange/models/legged.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -24,6 +27,7 @@
 #define PROBE_runtime 0
 #define PROBE_typed 1
 #define PROBE_planar 2
+#define PROBE_tree 3
 #define PROBE_KIND_(a) PROBE_##a
 #define PROBE_KIND(a) PROBE_KIND_(a)
 #ifndef PROBE_AXES
@@ -46,11 +50,21 @@ int main(int argc, char** argv) {
   constexpr int N = PROBE_N;
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> s(-1, 1);
+#if PROBE_KIND(PROBE_AXES) == PROBE_tree
+  const auto c = models::legged<4, N / 4>();
+  using S = std::remove_cvref_t<decltype(c)>;
+  typename S::state_type x, dx{};
+  for (auto& v : x) v = s(rng);
+  double nq = 0;  // the base's unit quaternion, as the scale benchmark
+  for (int i = 3; i < 7; ++i) nq += x[i] * x[i];
+  for (int i = 3; i < 7; ++i) x[i] /= std::sqrt(nq);
+#else
   const auto p = models::random_chain_params<N>(rng);
   const auto c = models::chain<N, probe_axes>(p);
   using S = std::remove_cvref_t<decltype(c)>;
   typename S::state_type x, dx{};
   for (auto& v : x) v = s(rng);
+#endif
   const long k = argc > 1 ? std::atol(argv[1]) : 1000;
   const char* alg = argc > 2 ? argv[2] : "default";
   const double* q = x.data();

@@ -343,7 +343,7 @@ FLANGE_INLINE force_pair<N, F> read_alone(const force_pair<N, F>& f) {
   return {flange::read_alone(f.n), flange::read_alone(f.f)};
 }
 
-template <class A, class T, int NV>
+template <class A, class T, int NV, bool Early>
 struct aba_link {
   // Not zeroed: every entry is written before it is read (the workspace is a
   // tuple, which would otherwise value-initialise it at every evaluation, and
@@ -353,19 +353,37 @@ struct aba_link {
   articulated_inertia<A, T> IA;
   aba_force<A, T> pA;
   aba_motion<A, T> c, a;
-  /// What the step down takes from the step up: v̇ = b − Gᵀ·a_P, with
-  /// b = D⁻¹·(u − Uᵀ·c) and G = Xᵀ·U·D⁻¹ (by column, a force in the
-  /// parent's coordinates), formed in the step up, where they wait for
-  /// nothing (aba_down).
+  /// What the step down takes from the step up, in one of two forms
+  /// (costs.hpp, aba_down_early; the scene chooses, aba_workspace):
+  ///  early:  v̇ = b − Gᵀ·a_P, with b = D⁻¹·(u − Uᵀ·c) and G = Xᵀ·U·D⁻¹ (by
+  ///          column, a force in the parent's coordinates), formed in the
+  ///          step up, where they wait for nothing;
+  ///  late:   v̇ = D⁻¹·(b − Gᵀ·a'), a' = X·a_P + c, with b = u and G = U.
+  static constexpr bool early = Early;
   std::array<T, NV> b;
   std::array<aba_force<A, T>, NV> G;
+  struct none {};
+  [[no_unique_address]] std::conditional_t<early, none, Eigen::Matrix<T, NV, NV>> Dinv;
 };
 
+/// The most links from the World to a leaf.
+template <class S>
+constexpr int tree_depth() {
+  constexpr int NL = S::tree.n_links;
+  std::array<int, NL> d{};
+  int most = 0;
+  for (int L = 1; L < NL; ++L) {  // parents come first
+    d[L] = d[S::tree.link_parent[L]] + 1;
+    most = d[L] > most ? d[L] : most;
+  }
+  return most;
+}
 template <class A, class S, class T, class Seq = std::make_integer_sequence<int, S::tree.n_links - 1>>
 struct aba_workspace;
 template <class A, class S, class T, int... L>
 struct aba_workspace<A, S, T, std::integer_sequence<int, L...>> {
-  using type = std::tuple<aba_link<A, T, link_info<S, L + 1>::nv>...>;
+  static constexpr bool early = aba_down_early(A::planar, tree_depth<S>(), S::tree.n_links - 1);
+  using type = std::tuple<aba_link<A, T, link_info<S, L + 1>::nv, early>...>;
 };
 
 /// The articulated body's instructions when its steps are unrolled into one
@@ -452,15 +470,29 @@ FLANGE_INLINE void aba_start(W& w, const Mo& m, const WP& wP, const rigid_inerti
 template <class A, class T, bool JointForces, class W, class Mo, class IA_, class PA_, class IP, class FP>
 FLANGE_INLINE pivot_report<T> aba_up_carry(W& w, const Mo& m, IA_& IA, const PA_& pA, IP* ip, FP* fp, const T* tau) {
   constexpr int nv = std::tuple_size_v<decltype(w.b)>;
-  // U = I_A·S, D⁻¹, u, U·D⁻¹: this step's own; the step down needs only b and G.
-  std::array<aba_force<A, T>, nv> U, UDinv;
+  // U = I_A·S, D⁻¹, u, U·D⁻¹: in the early form this step's own (the step
+  // down takes b and G); in the late form U, D⁻¹ and u are written where the
+  // step down reads them.
+  std::array<aba_force<A, T>, nv> UDinv, U_own;
+  Eigen::Matrix<T, nv, nv> Dinv_own;
+  std::array<T, nv> u_own;
+  auto& U = [&]() FLANGE_INLINE_LAMBDA -> auto& {
+    if constexpr (W::early) return U_own;
+    else return w.G;
+  }();
   [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
     ((U[K] = IA.times(m.template col<K>().ang, m.template col<K>().lin)), ...);
   }(std::make_integer_sequence<int, nv>{});
-  Eigen::Matrix<T, nv, nv> Dinv;
+  auto& Dinv = [&]() FLANGE_INLINE_LAMBDA -> auto& {
+    if constexpr (W::early) return Dinv_own;
+    else return w.Dinv;
+  }();
   if (const auto piv = aba_invert_d(U, IA, m, Dinv); piv.index >= 0) [[unlikely]]
     return piv;
-  std::array<T, nv> u;
+  auto& u = [&]() FLANGE_INLINE_LAMBDA -> auto& {
+    if constexpr (W::early) return u_own;
+    else return w.b;
+  }();
   const auto sp = m.project(pA.n, pA.f);
   for (int k = 0; k < nv; ++k) {
     if constexpr (JointForces) u[k] = tau[k] - sp[k];
@@ -475,15 +507,17 @@ FLANGE_INLINE pivot_report<T> aba_up_carry(W& w, const Mo& m, IA_& IA, const PA_
     }
     UDinv[k] = {n, f};
   }
-  // The step down's v̇ = D⁻¹·(u − Uᵀ·(X·a_P + c)) as b − Gᵀ·a_P (aba_down).
-  std::array<T, nv> r;
-  for (int k = 0; k < nv; ++k)
-    r[k] = u[k] - (value_of<T>(dot(U[k].n, w.c.ang)) + value_of<T>(dot(U[k].f, w.c.lin)));
-  for (int i = 0; i < nv; ++i) {
-    w.b[i] = Dinv(i, 0) * r[0];
-    for (int k = 1; k < nv; ++k) w.b[i] += Dinv(i, k) * r[k];
-    const auto g = carry_up(m, force_pair{UDinv[i].n, UDinv[i].f});
-    w.G[i] = as_force<A, T>(g.n, g.f);
+  if constexpr (W::early) {
+    // The step down's v̇ = D⁻¹·(u − Uᵀ·(X·a_P + c)) as b − Gᵀ·a_P (aba_down).
+    std::array<T, nv> r;
+    for (int k = 0; k < nv; ++k)
+      r[k] = u[k] - (value_of<T>(dot(U[k].n, w.c.ang)) + value_of<T>(dot(U[k].f, w.c.lin)));
+    for (int i = 0; i < nv; ++i) {
+      w.b[i] = Dinv(i, 0) * r[0];
+      for (int k = 1; k < nv; ++k) w.b[i] += Dinv(i, k) * r[k];
+      const auto g = carry_up(m, force_pair{UDinv[i].n, UDinv[i].f});
+      w.G[i] = as_force<A, T>(g.n, g.f);
+    }
   }
   if constexpr (!std::is_same_v<IP, std::nullptr_t>) {
     // I_a = I_A − U·D⁻¹·Uᵀ; p_a = p_A + I_a·c + U·D⁻¹·u
@@ -543,14 +577,31 @@ FLANGE_INLINE auto aba_down(W& w, const Mo& m, const AP& aP, T* vdot) {
   // waits for a dot product and a subtraction a link, not for the rotation
   // and D⁻¹ too (planar 32-link chain: 998 → 869 ns; spatial chains
   // unchanged).
+  const auto parent_part = [&]() FLANGE_INLINE_LAMBDA {  // a' = X·a_P + c
+    return as_motion<A, T>(rot(m.E(), aP.ang) + w.c.ang, rot(m.E(), aP.lin + cross(aP.ang, m.p)) + w.c.lin);
+  };
+  const auto minus_g = [&](const auto& x, std::array<T, nv>& r) FLANGE_INLINE_LAMBDA {  // b − Gᵀ·x
+    for (int i = 0; i < nv; ++i)
+      r[i] = w.b[i] - (value_of<T>(dot(w.G[i].n, x.ang)) + value_of<T>(dot(w.G[i].f, x.lin)));
+  };
+  // Formed once, before v̇ is written (vdot may alias what a' reads).
+  const auto ap = [&]() FLANGE_INLINE_LAMBDA {
+    if constexpr (!W::early || HasChildren) return parent_part();
+    else return 0;
+  }();
   std::array<T, nv> acc;
-  for (int i = 0; i < nv; ++i) {
-    acc[i] = w.b[i] - (value_of<T>(dot(w.G[i].n, aP.ang)) + value_of<T>(dot(w.G[i].f, aP.lin)));
-    vdot[i] = acc[i];
+  if constexpr (W::early) {
+    minus_g(aP, acc);
+  } else {
+    std::array<T, nv> r;
+    minus_g(ap, r);
+    for (int i = 0; i < nv; ++i) {
+      acc[i] = w.Dinv(i, 0) * r[0];
+      for (int k = 1; k < nv; ++k) acc[i] += w.Dinv(i, k) * r[k];
+    }
   }
+  for (int i = 0; i < nv; ++i) vdot[i] = acc[i];
   if constexpr (HasChildren) {
-    const auto ap =
-        as_motion<A, T>(rot(m.E(), aP.ang) + w.c.ang, rot(m.E(), aP.lin + cross(aP.ang, m.p)) + w.c.lin);
     auto an = ap.ang;
     auto al = ap.lin;
     [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
