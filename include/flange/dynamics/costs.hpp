@@ -34,11 +34,14 @@ struct algorithm_costs {
 /// 512 | 600). The earlier machine's was 125, unrolled, crossover 12
 /// (docs/performance.md, "Choosing the algorithm"); general rotations
 /// (110) were not measured again. The planar articulated body, after its own
-/// known zeros, 35 → 31: crossover 11 links, measured between 10 and 12
-/// (Newton–Euler 328 | 507 ns, articulated body 344 | 417).
+/// known zeros, 35 → 31 (crossover 11 links), and after stop 44's early
+/// step down (aba_down_early) 31 → 25.5: crossover 8 links, measured between
+/// 7 and 8 (Newton–Euler 141 | 166 ns, articulated body 140 | 156; at 9 and
+/// 10 links 202 | 270 against 186 | 206; tools/chain_counts.sh N planar
+/// default,other).
 template <class A>
 constexpr algorithm_costs costs_for() {
-  if constexpr (A::planar) return {12.8, 3.9, 3.9, 31, 31, 22};
+  if constexpr (A::planar) return {12.8, 3.9, 3.9, 25.5, 25.5, 22};
   else return {17.7, 31.7, 20, 110, 75, 22};
 }
 
