@@ -15,14 +15,19 @@
 //          parent's I_A += Xᵀ·(I_A − U·D⁻¹·Uᵀ)·X, p_A += Xᵀ·(p_A + I_a·c + U·D⁻¹·u)
 //   down:  a' = X·a_P + c, v̇ = D⁻¹·(u − Uᵀ·a'), a = a' + S·v̇
 //
+// (where the tree is mostly one chain, v̇ = b − Gᵀ·a_P with b and G formed in
+// the step up: aba_link, costs.hpp aba_down_early),
+//
 // with X the link's motion transform (rotation E, offset p) and a₀ = (0, −g).
 // I_A is kept as 3 × 3 blocks in space and as a 3 × 3 matrix in a plane
 // (articulated_inertia below). The up and down steps are written once, as
 // functions of a link's kinds (its joint's motion, its workspace), not of the
 // link: a small scene has them unrolled into the pass, a large one calls one
 // shared copy per kind, which stays in the instruction cache
-// (aba_shared_steps); above 16 links each link's remaining code is a function
-// of its own (links.hpp, for_links_split).
+// (aba_shared_steps), and in a plane links in a row of one kind run theirs in
+// blocks, handing each other their results in registers (aba_blocks); above
+// 16 links each link's (or block's) remaining code is a function of its own
+// (links.hpp, for_links_split; for_units_split).
 #pragma once
 #include "flange/scene/named_state.hpp"
 #include "flange/detail/inline.hpp"
@@ -572,11 +577,10 @@ FLANGE_INLINE pivot_report<T> aba_up(W& w, const Mo& m, P* p, const T* tau) {
 template <class A, class T, bool HasChildren, bool StoreA = HasChildren, class W, class Mo, class AP>
 FLANGE_INLINE auto aba_down(W& w, const Mo& m, const AP& aP, T* vdot) {
   constexpr int nv = std::tuple_size_v<decltype(w.b)>;
-  // v̇ = D⁻¹·(u − Uᵀ·a') with a' = X·a_P + c, as b − Gᵀ·a_P (aba_link): the
-  // chain of accelerations that runs down a long chain link after link
-  // waits for a dot product and a subtraction a link, not for the rotation
-  // and D⁻¹ too (planar 32-link chain: 998 → 869 ns; spatial chains
-  // unchanged).
+  // v̇ = D⁻¹·(u − Uᵀ·a') with a' = X·a_P + c; in the early form (aba_link)
+  // as b − Gᵀ·a_P: the chain of accelerations that runs down a long chain
+  // link after link then waits for a dot product and a subtraction a link,
+  // not for the rotation and D⁻¹ too (planar 32-link chain: 998 → 869 ns).
   const auto parent_part = [&]() FLANGE_INLINE_LAMBDA {  // a' = X·a_P + c
     return as_motion<A, T>(rot(m.E(), aP.ang) + w.c.ang, rot(m.E(), aP.lin + cross(aP.ang, m.p)) + w.c.lin);
   };
