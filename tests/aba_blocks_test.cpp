@@ -13,6 +13,7 @@
 #include <flange/models/chain.hpp>
 #include <flange/models/legged.hpp>
 
+#include "aba_agreement.hpp"
 #include "random_params.hpp"
 
 #include <algorithm>
@@ -40,32 +41,8 @@ std::vector<int> block_lengths() {
   return r;
 }
 
-/// The largest disagreement of the blocks (shared) and of the unrolled form
-/// with Newton–Euler + M, relative to the largest |v̇|, over random states.
-template <class S>
-double worst_disagreement(const S& s) {
-  constexpr int nq = S::n_q, nv = S::n_v;
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-2, 2);
-  double worst = 0;
-  for (int k = 0; k < 30; ++k) {
-    std::array<double, nq> q;
-    std::array<double, nv> v, ref, unrolled, blocks;
-    for (auto& x : q) x = u(rng);
-    for (auto& x : v) x = u(rng);
-    accelerations_newton_euler(s, 0.1, q.data(), v.data(), ref.data());
-    accelerations_articulated_body<aba_steps::unrolled>(s, 0.1, q.data(), v.data(), unrolled.data());
-    accelerations_articulated_body<aba_steps::shared>(s, 0.1, q.data(), v.data(), blocks.data());
-    double scale = 1;
-    for (const double x : ref) scale = std::max(scale, std::abs(x));
-    for (int i = 0; i < nv; ++i)
-      worst = std::max({worst, std::abs(unrolled[i] - ref[i]) / scale, std::abs(blocks[i] - ref[i]) / scale});
-  }
-  return worst;
-}
-// Round-off of either algorithm, amplified by the mass matrix's condition,
-// as in known_zeros_test and planar_test.
-constexpr double round_off = 1e-11;
+// Round-off of either algorithm, amplified by the mass matrix's condition.
+constexpr double round_off = test::aba_round_off;
 
 template <template <int> class Axes>
 void check_chain(const char* what) {
@@ -79,7 +56,7 @@ void check_chain(const char* what) {
   REQUIRE(lengths.size() >= 2);
   CHECK(*std::max_element(lengths.begin(), lengths.end()) == block_links<S>);
   CHECK(std::accumulate(lengths.begin(), lengths.end(), 0) == N);
-  const double w = worst_disagreement(c);
+  const double w = test::worst_aba_disagreement(c, 11, 30);
   INFO("worst |Δv̇| / max|v̇| = " << w);
   CHECK(w < round_off);
 }
@@ -119,27 +96,12 @@ TEST_CASE("the step down is early on a chain and late on a branched tree, and bo
   // 17 links (the trunk and four legs of four), the deepest 5 deep.
   STATIC_REQUIRE(detail::tree_depth<L>() == 5);
   STATIC_REQUIRE(!detail::aba_workspace<algebra_t<L>, L, double>::early);
-  // The base's quaternion must be a unit one: worst_disagreement draws q
-  // freely, so compare at normalised states here.
-  constexpr int nq = L::n_q, nv = L::n_v;
-  std::uniform_real_distribution<double> u(-2, 2);
-  double worst = 0;
-  for (int k = 0; k < 20; ++k) {
-    std::array<double, nq> q;
-    std::array<double, nv> v, ref, unrolled, shared;
-    for (auto& x : q) x = u(rng);
-    for (auto& x : v) x = u(rng);
+  // The base's quaternion (q[3 … 6]) must be a unit one.
+  const double worst = test::worst_aba_disagreement(t, 11, 20, [](auto& q) {
     double n2 = 0;
     for (int i = 3; i < 7; ++i) n2 += q[i] * q[i];
     for (int i = 3; i < 7; ++i) q[i] /= std::sqrt(n2);
-    accelerations_newton_euler(t, 0.1, q.data(), v.data(), ref.data());
-    accelerations_articulated_body<aba_steps::unrolled>(t, 0.1, q.data(), v.data(), unrolled.data());
-    accelerations_articulated_body<aba_steps::shared>(t, 0.1, q.data(), v.data(), shared.data());
-    double scale = 1;
-    for (const double x : ref) scale = std::max(scale, std::abs(x));
-    for (int i = 0; i < nv; ++i)
-      worst = std::max({worst, std::abs(unrolled[i] - ref[i]) / scale, std::abs(shared[i] - ref[i]) / scale});
-  }
+  });
   INFO("worst |Δv̇| / max|v̇| = " << worst);
   CHECK(worst < round_off);
 }

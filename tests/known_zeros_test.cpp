@@ -13,6 +13,8 @@
 #include <flange/dynamics/forward_dynamics.hpp>
 #include <flange/equations_of_motion.hpp>
 
+#include "aba_agreement.hpp"
+
 #include <random>
 
 using namespace flange;
@@ -62,33 +64,7 @@ auto planar_mixed() {
                connect<"t2.frame_b", "r2.frame_a">, connect<"r2.frame_b", "b4.frame_a">);
 }
 
-/// The largest disagreement of either articulated-body form with Newton–Euler
-/// + M, relative to the largest |v̇|, over random states.
-template <class S>
-double worst_disagreement(const S& s) {
-  constexpr int nq = S::n_q, nv = S::n_v;
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-2, 2);
-  double worst = 0;
-  for (int k = 0; k < 50; ++k) {
-    std::array<double, nq> q;
-    std::array<double, nv> v, ref, unrolled, shared;
-    for (auto& x : q) x = u(rng);
-    for (auto& x : v) x = u(rng);
-    accelerations_newton_euler(s, 0.1, q.data(), v.data(), ref.data());
-    accelerations_articulated_body<aba_steps::unrolled>(s, 0.1, q.data(), v.data(), unrolled.data());
-    accelerations_articulated_body<aba_steps::shared>(s, 0.1, q.data(), v.data(), shared.data());
-    double scale = 1;
-    for (const double x : ref) scale = std::max(scale, std::abs(x));
-    for (int i = 0; i < nv; ++i)
-      worst = std::max({worst, std::abs(unrolled[i] - ref[i]) / scale, std::abs(shared[i] - ref[i]) / scale});
-  }
-  return worst;
-}
-// Round-off of either algorithm: a few hundred operations on numbers of
-// order one, each off by ε ≈ 1.1e-16, amplified by the mass matrix's
-// condition (below 1e3 for these parameters), as in planar_test.
-constexpr double round_off = 1e-11;
+constexpr double round_off = test::aba_round_off;
 
 }  // namespace
 
@@ -98,7 +74,7 @@ TEST_CASE("every joint kind the known zeros cover, in series in space, agrees wi
   // The links behind p1, r2, p2 and r3 take the known-zero path: one rate
   // each, along a coordinate direction of its (axis-framed) link.
   STATIC_REQUIRE(S::n_v == 5);
-  const double w = worst_disagreement(s);
+  const double w = test::worst_aba_disagreement(s, 5, 50);
   INFO("worst |Δv̇| / max|v̇| = " << w);
   CHECK(w < round_off);
 }
@@ -107,7 +83,7 @@ TEST_CASE("revolute and prismatic joints in series in a plane agree with Newton�
   const auto s = planar_mixed();
   using S = std::remove_cvref_t<decltype(s)>;
   STATIC_REQUIRE(detail::planar_axis<S>() == 2);
-  const double w = worst_disagreement(s);
+  const double w = test::worst_aba_disagreement(s, 5, 50);
   INFO("worst |Δv̇| / max|v̇| = " << w);
   CHECK(w < round_off);
 }

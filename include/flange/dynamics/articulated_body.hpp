@@ -335,10 +335,8 @@ struct articulated_inertia<planar_algebra<K>, T> {
 };
 
 /// read_alone (math/read_alone.hpp) for an articulated inertia and a force.
-template <class T>
-FLANGE_INLINE articulated_inertia<spatial_algebra, T> read_alone(const articulated_inertia<spatial_algebra, T>& a) {
-  return {flange::read_alone(a.Th), flange::read_alone(a.H), flange::read_alone(a.M)};
-}
+/// Only planar steps read their records alone (aba_up; blocks are planar,
+/// costs.hpp aba_block_links): a spatial record is worked on in place.
 template <int K, class T>
 FLANGE_INLINE articulated_inertia<planar_algebra<K>, T> read_alone(const articulated_inertia<planar_algebra<K>, T>& a) {
   return {flange::read_alone(a.I)};
@@ -852,37 +850,49 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
       using LI = link_info<S, L0>;
       const auto [wp, mp] = block_links(u);
       aba_start_block_shared<A, T, K.h_zero[L0], K.I_kind[L0], F.torque[L0], F.force[L0], R>(
-          wp.data(), mp.data(), parent_omega(std::integral_constant<int, L0>{}), &scene.model().link[L0], v + LI::v, &n_ext[L0], &f_ext[L0]);
+          wp.data(), mp.data(), parent_omega(std::integral_constant<int, L0>{}), &scene.model().link[L0], v + LI::v,
+          &n_ext[L0], &f_ext[L0]);
     }
   });
   // Up the tree, children first.
   constexpr bool jf = has_joint_forces<S>();
+  // A joint that frees every direction (FreeMotion; a Planar joint in
+  // planar algebra) passes its parent no articulated inertia, and of the
+  // force only its own generalized force, S⁻ᵀ·τ. The general formula
+  // reaches both only through cancellation (IA − U·D⁻¹·Uᵀ and
+  // pA − U·D⁻¹·Sᵀ·pA), whose round-off is that of the heavy child and can
+  // swamp a light parent (tests/hard_mass_ratio_test.cpp: masses from 1e-6
+  // to 1e6 made a parent's articulated inertia negative).
+  const auto frees_every_direction = [](auto l) constexpr {
+    using LI = link_info<S, decltype(l)::value>;
+    return LI::parent != 0 && LI::nv == algebra_size<A>;
+  };
+  // The record link l's step up adds its shares to: its parent's (none for a
+  // root link or one that frees every direction).
+  const auto parent_record = [&](auto l) FLANGE_INLINE_LAMBDA {
+    using LI = link_info<S, decltype(l)::value>;
+    if constexpr (LI::parent != 0 && !frees_every_direction(l)) return &std::get<LI::parent - 1>(ws);
+    else return static_cast<std::nullptr_t*>(nullptr);
+  };
+  // A failing pivot is a singular mass matrix at the rates of the joint (or
+  // block) starting at link l (D is the joint's share of it once its subtree
+  // is accounted for): reported as the mass-matrix path reports it, a
+  // non-finite state included.
+  const auto report = [&](auto l, const pivot_report<T>& piv) FLANGE_INLINE_LAMBDA {
+    if (piv.index >= 0) [[unlikely]]
+      singular_mass_matrix<S>(pivot_report<T>{link_info<S, decltype(l)::value>::v + piv.index, piv.d, piv.scale}, t,
+                              q, v);
+  };
   const auto up_link = [&](auto l) FLANGE_INLINE_LAMBDA {
     constexpr int L = decltype(l)::value;
     using LI = link_info<S, L>;
     constexpr int nv = LI::nv;
     auto& w = std::get<L - 1>(ws);
     const auto& m = std::get<L - 1>(motions);
-    // A joint that frees every direction (FreeMotion; a Planar joint in
-    // planar algebra) passes its parent no articulated inertia, and of the
-    // force only its own generalized force, S⁻ᵀ·τ. The general formula
-    // reaches both only through cancellation (IA − U·D⁻¹·Uᵀ and
-    // pA − U·D⁻¹·Sᵀ·pA), whose round-off is that of the heavy child and can
-    // swamp a light parent (tests/hard_mass_ratio_test.cpp: masses from 1e-6
-    // to 1e6 made a parent's articulated inertia negative).
-    constexpr bool frees_all = LI::parent != 0 && nv == algebra_size<A>;
-    auto* parent = [&]() FLANGE_INLINE_LAMBDA {
-      if constexpr (LI::parent != 0 && !frees_all) return &std::get<LI::parent - 1>(ws);
-      else return static_cast<std::nullptr_t*>(nullptr);
-    }();
-    pivot_report<T> piv;
-    if constexpr (shared) piv = aba_up_shared<A, T, jf>(w, m, parent, tau.data() + LI::v);
-    else piv = aba_up<A, T, jf>(w, m, parent, tau.data() + LI::v);
-    // A failing pivot is a singular mass matrix at this joint's rates (D is
-    // the joint's share of it once its subtree is accounted for): reported
-    // as the mass-matrix path reports it, a non-finite state included.
-    if (piv.index >= 0) [[unlikely]]
-      singular_mass_matrix<S>(pivot_report<T>{LI::v + piv.index, piv.d, piv.scale}, t, q, v);
+    constexpr bool frees_all = frees_every_direction(l);
+    auto* parent = parent_record(l);
+    if constexpr (shared) report(l, aba_up_shared<A, T, jf>(w, m, parent, tau.data() + LI::v));
+    else report(l, aba_up<A, T, jf>(w, m, parent, tau.data() + LI::v));
     if constexpr (frees_all && has_generalized_force<typename LI::joint_type>) {
       Eigen::Matrix<T, nv, nv> St;
       [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
@@ -901,15 +911,10 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
     if constexpr (R == 1) {
       up_link(std::integral_constant<int, L0>{});
     } else {
-      using LI = link_info<S, L0>;
+      constexpr std::integral_constant<int, L0> first{};
       const auto [wp, mp] = block_links(u);
-      auto* parent = [&]() FLANGE_INLINE_LAMBDA {
-        if constexpr (LI::parent != 0) return &std::get<LI::parent - 1>(ws);
-        else return static_cast<std::nullptr_t*>(nullptr);
-      }();
-      const auto piv = aba_up_block_shared<A, T, jf, R>(wp.data(), mp.data(), parent, tau.data() + LI::v);
-      if (piv.index >= 0) [[unlikely]]
-        singular_mass_matrix<S>(pivot_report<T>{LI::v + piv.index, piv.d, piv.scale}, t, q, v);
+      report(first, aba_up_block_shared<A, T, jf, R>(wp.data(), mp.data(), parent_record(first),
+                                                     tau.data() + link_info<S, L0>::v));
     }
   });
   // Down the tree, parents first: a' = X·a_P + c, v̇ = D⁻¹·(u − Uᵀ·a'), a = a' + S·v̇.
