@@ -119,5 +119,26 @@ TEST_CASE("congruence by coordinate rotations and their products equals the dens
     CHECK(near(flange::rotated_back_sym<double>(P, X), D.transpose() * X * D));
     CHECK(near(flange::rotated_back<double>(P, G), D.transpose() * G * D));
     CHECK(near(flange::to_matrix<double>(P), D));
+    // With row and column Z of X known zero (row Z of G): every coordinate
+    // rotation skips them (about Z it keeps them zero, about another axis
+    // it turns them out of place), and the product passes them on from its
+    // first factor about Z to the second.
+    flange::detail::static_for<3>([&](auto Z) {
+      Mat3d Xz = X, Gz = G;
+      Xz.row(Z).setZero();
+      Xz.col(Z).setZero();
+      Gz.row(Z).setZero();
+      flange::detail::static_for<3>([&](auto I) {
+        const flange::coordinate_rotation<double, I> E{std::cos(a), std::sin(a)};
+        const Mat3d DI = passive(a, I);
+        CHECK(near(flange::rotated_back_sym<double, Z>(E, Xz), DI.transpose() * Xz * DI));
+        CHECK(near(flange::rotated_back<double, Z>(E, Gz), DI.transpose() * Gz * DI));
+      });
+      const flange::rotation_product<flange::coordinate_rotation<double, Z>, flange::coordinate_rotation<double, (Z + 1) % 3>>
+          Q{{std::cos(a), std::sin(a)}, {std::cos(b), std::sin(b)}};
+      const Mat3d DQ = passive(a, Z) * passive(b, (Z + 1) % 3);
+      CHECK(near(flange::rotated_back_sym<double, Z>(Q, Xz), DQ.transpose() * Xz * DQ));
+      CHECK(near(flange::rotated_back<double, Z>(Q, Gz), DQ.transpose() * Gz * DQ));
+    });
   }
 }

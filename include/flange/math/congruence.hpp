@@ -18,6 +18,14 @@
 
 namespace flange {
 
+/// The row (and column) Z a rotation of type E leaves zero when it was (−1:
+/// none): Z itself for a rotation about axis Z, else none.
+template <class E>
+constexpr int keeps_zero(int Z) {
+  if constexpr (requires { std::remove_cvref_t<E>::axis; }) return std::remove_cvref_t<E>::axis == Z ? Z : -1;
+  else return -1;
+}
+
 /// Eᵀ·X·E for any 3 × 3 X; ZR (−1: none) a row X is known to have zero.
 /// A coordinate rotation about axis ZR keeps that row zero and turns only the
 /// other two (an articulated inertia's H behind a revolute joint,
@@ -29,7 +37,8 @@ FLANGE_INLINE Mat3<T> rotated_back(const E& R, const Mat3<T>& X) {
   } else if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) {
     return small::mul(small::mul_tn(R, X), R);
   } else if constexpr (is_rotation_product<E>) {
-    return rotated_back<T>(R.b, rotated_back<T, ZR>(R.a, X));  // (A·B)ᵀ·X·(A·B) = Bᵀ·(Aᵀ·X·A)·B
+    // (A·B)ᵀ·X·(A·B) = Bᵀ·(Aᵀ·X·A)·B; A about axis ZR leaves row ZR zero for B.
+    return rotated_back<T, keeps_zero<decltype(R.a)>(ZR)>(R.b, rotated_back<T, ZR>(R.a, X));
   } else {
     // A = Eᵀ·X column by column (the rows X may hold: CM), then B = A·E
     // row by row, the rows A may hold (AM) only.
@@ -63,18 +72,37 @@ FLANGE_INLINE Mat3<T> rotated_back(const E& R, const Mat3<T>& X) {
 ///
 /// Z (−1: none) is a row and column X is known to have zero: a rotation about
 /// axis Z keeps them zero and computes only Y_jj, Y_kk, Y_jk (an articulated
-/// inertia's Θ behind a revolute joint, articulated_body.hpp).
+/// inertia's Θ behind a revolute joint, articulated_body.hpp); a rotation
+/// about another axis skips them as factors (the second factor R_x(α) of an
+/// axis frame's E: 16-link spatial chain, 1252 → 1234 instructions a link,
+/// 1094 → 1052 ns).
 template <class T, int Z = -1, class E>
 FLANGE_INLINE Mat3<T> rotated_back_sym(const E& R, const Mat3<T>& X) {
   if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) {
     return small::congruence_sym(R, X);
   } else if constexpr (is_rotation_product<E>) {
-    return rotated_back_sym<T>(R.b, rotated_back_sym<T, Z>(R.a, X));
+    return rotated_back_sym<T, keeps_zero<decltype(R.a)>(Z)>(R.b, rotated_back_sym<T, Z>(R.a, X));
   } else if constexpr (requires { E::axis; }) {
     constexpr int I = E::axis, j = E::j, k = E::k;
     const T cc = R.c * R.c, ss = R.s * R.s, cs = R.c * R.s;
-    const T t = T(2) * cs * X(j, k);
     Mat3<T> Y;
+    if constexpr (Z == j || Z == k) {
+      // Row and column Z zero, turned out of place: with x the row's one
+      // other entry and d the diagonal entry left in the plane (Z = k:
+      // x = X_Ij, d = X_jj; Z = j: x = X_Ik, d = X_kk), 5 products:
+      //   Z = k:  Y_Ij = c·x,  Y_Ik = s·x,  Y_jj = c²·d,  Y_kk = s²·d,  Y_jk = cs·d
+      //   Z = j:  Y_Ij = −s·x, Y_Ik = c·x,  Y_jj = s²·d,  Y_kk = c²·d,  Y_jk = −cs·d
+      constexpr bool kz = Z == k;
+      const T x = kz ? X(I, j) : X(I, k), d = kz ? X(j, j) : X(k, k);
+      Y(I, I) = X(I, I);
+      Y(I, j) = Y(j, I) = kz ? R.c * x : -(R.s * x);
+      Y(I, k) = Y(k, I) = kz ? R.s * x : R.c * x;
+      Y(j, j) = (kz ? cc : ss) * d;
+      Y(k, k) = (kz ? ss : cc) * d;
+      Y(j, k) = Y(k, j) = kz ? cs * d : -(cs * d);
+      return Y;
+    }
+    const T t = T(2) * cs * X(j, k);
     if constexpr (I == Z) {
       Y(I, I) = Y(I, j) = Y(j, I) = Y(I, k) = Y(k, I) = T(0);
     } else {
