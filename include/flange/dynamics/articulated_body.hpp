@@ -540,6 +540,14 @@ FLANGE_INLINE pivot_report<T> aba_up_carry(W& w, const Mo& m, IA_& IA, const PA_
   return {};
 }
 
+/// aba_up_carry with the parent's shares going to the record of parent p
+/// (nullptr: none).
+template <class A, class T, bool JointForces, class W, class Mo, class IA_, class PA_, class P>
+FLANGE_INLINE pivot_report<T> aba_up_to(W& w, const Mo& m, IA_& IA, const PA_& pA, P* p, const T* tau) {
+  if constexpr (std::is_same_v<P, std::nullptr_t>) return aba_up_carry<A, T, JointForces>(w, m, IA, pA, p, p, tau);
+  else return aba_up_carry<A, T, JointForces>(w, m, IA, pA, &p->IA, &p->pA, tau);
+}
+
 /// One link's step up the tree: U = I_A·S, D⁻¹, u = τ − Sᵀ·p_A, the step
 /// down's b and G, and, with a parent p (not nullptr), the parent's
 /// I_A += Xᵀ·(I_A − U·D⁻¹·Uᵀ)·X and p_A += Xᵀ·(p_A + I_a·c + U·D⁻¹·u). Its
@@ -562,9 +570,7 @@ FLANGE_INLINE pivot_report<T> aba_up(W& w, const Mo& m, P* p, const T* tau) {
     if constexpr (A::planar) return read_alone(w.pA);
     else return (w.pA);
   }();
-  if constexpr (std::is_same_v<P, std::nullptr_t>)
-    return aba_up_carry<A, T, JointForces>(w, m, IA, pA, p, p, tau);
-  else return aba_up_carry<A, T, JointForces>(w, m, IA, pA, &p->IA, &p->pA, tau);
+  return aba_up_to<A, T, JointForces>(w, m, IA, pA, p, tau);
 }
 
 /// One link's step down the tree from its parent's acceleration aP:
@@ -652,10 +658,8 @@ FLANGE_INLINE pivot_report<T> aba_up_block(W* const* wp, const Mo* const* mp, P*
         piv = aba_up_carry<A, T, JointForces>(*wp[k], *mp[k], IA, pA, &IAn, &pAn, tau + k * nv);
         IA = IAn;
         pA = pAn;
-      } else if constexpr (std::is_same_v<P, std::nullptr_t>) {
-        piv = aba_up_carry<A, T, JointForces>(*wp[0], *mp[0], IA, pA, p, p, tau);
       } else {
-        piv = aba_up_carry<A, T, JointForces>(*wp[0], *mp[0], IA, pA, &p->IA, &p->pA, tau);
+        piv = aba_up_to<A, T, JointForces>(*wp[0], *mp[0], IA, pA, p, tau);
       }
       if (piv.index >= 0) [[unlikely]] {
         piv.index += k * nv;
