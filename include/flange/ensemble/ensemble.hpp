@@ -50,30 +50,34 @@
 
 #include "flange/ensemble/cases.hpp"
 #include "flange/ensemble/record.hpp"
-#include "flange/simulate/checked.hpp"
-#include "flange/simulate/odeint.hpp"
+#include "flange/simulate/simulate.hpp"
 
 namespace flange::ensemble {
 
-/// Dense-output steppers an ensemble integrates with.
-namespace method {
-/// Dormand–Prince 5(4) with dense output: Odeint's make_dense_output.
-struct dopri5 {
-  template <class X>
-  static auto make(double abs_tol, double rel_tol) {
-    return odeint::make_dense_output(abs_tol, rel_tol, odeint::runge_kutta_dopri5<X>());
+/// The methods an ensemble integrates with: flange::method (method.hpp),
+/// dopri5 by default.
+namespace method = ::flange::method;
+
+/// The integration loop's watcher in an ensemble case: hands the recorders
+/// the start and each step, and keeps the last accepted state (a failed
+/// case's fail_state).
+template <class S, class X, class Recs>
+struct record_steps {
+  const S& scene;
+  Recs& recs;
+  X& last;
+  bool& have_last;
+  void start(const X& x0, double t) {
+    std::apply([&](auto&... r) { (r.start(scene, t, x0), ...); }, recs);
+    last = x0;
+    have_last = true;
+  }
+  template <class View>
+  void step(const View& v) {
+    std::apply([&](auto&... r) { (r.step(v), ...); }, recs);
+    last = v.x1;
   }
 };
-/// Bulirsch–Stoer with dense output: high order for smooth cases at tight
-/// tolerances. Odeint's implementation allocates two small vectors per step
-/// (docs/ensembles.md).
-struct bulirsch_stoer {
-  template <class X>
-  static auto make(double abs_tol, double rel_tol) {
-    return odeint::bulirsch_stoer_dense_out<X>(abs_tol, rel_tol);
-  }
-};
-}  // namespace method
 
 /// How each case is integrated.
 struct integration {
@@ -232,7 +236,10 @@ class study {
     return names;
   }
 
-  /// One case, as every policy runs it.
+  /// One case, as every policy runs it: the loop simulate() runs, with the
+  /// same checks, so a case ends bit for bit where simulate<Method> ends and
+  /// is projected where the scene needs it; the recorders watch the start
+  /// and each step.
   template <int K>
   outcome_type<K> run_case(const case_set<K>& cases, std::size_t index) const {
     using S = scene_type<K>;
@@ -241,74 +248,36 @@ class study {
     o.index = index;
     o.values.fill(not_seen);
     o.fail_state.fill(not_seen);
-    budget b{.max_rhs_evals = in_.max_rhs_evals};
     X last{};
     bool have_last = false;
+    long evals = 0;
     try {
-      // Not a structured binding: lambdas below capture x (C++20 allows it,
-      // clang 14 does not).
       auto made = setup_(cases[index]);
       const S& s = std::get<0>(made);
       X& x = std::get<1>(made);
       auto recs = recs_;  // this case's recorders
-      auto sys = checked(s, b);
-      auto st = Method::template make<X>(in_.abs_tol, in_.rel_tol);
-      const double t0 = in_.t0, t1 = in_.t1;
-      std::apply([&](auto&... r) { (r.start(s, t0, x), ...); }, recs);
-      last = x;
-      have_last = true;
-      // odeint::integrate_adaptive's loop for dense-output steppers (Boost
-      // 1.74 and 1.81 alike: whole steps while they end before t1, then one
-      // aimed at t1),
-      // with the recorders watching each step.
-      using odeint::detail::less_eq_with_sign;
-      using odeint::detail::less_with_sign;
-      const double tiny = 64 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t0), std::abs(t1));
-      long steps = 0;
-      double now = t0;
-      try {
-        st.initialize(x, t0, in_.dt);
-        while (less_with_sign(st.current_time(), t1, st.current_time_step())) {
-          while (less_eq_with_sign(static_cast<double>(st.current_time() + st.current_time_step()), t1,
-                                   st.current_time_step())) {
-            now = st.current_time();
-            st.do_step(sys);
-            ++steps;
-            const step_view<S, X, decltype(st)> v{s, now, st.current_time(), st.previous_state(),
-                                                  st.current_state(), st};
-            std::apply([&](auto&... r) { (r.step(v), ...); }, recs);
-            last = st.current_state();
-            if (st.current_time_step() < tiny && t1 - st.current_time() > tiny) [[unlikely]]
-              throw odeint::step_adjustment_error("the controlled stepper's step size fell below 64 ulp of t");
-          }
-          st.initialize(st.current_state(), st.current_time(), static_cast<double>(t1 - st.current_time()));
-        }
-      } catch (const odeint::step_adjustment_error&) {
-        throw simulation_error(::flange::detail::concat("flange: the step size collapsed at t = ", now, ", ",
-                                                        ::flange::detail::describe(last),
-                                                        " (a discontinuity, a singularity or a tolerance the "
-                                                        "stepper cannot meet in double precision)"),
-                               now);
-      }
-      x = st.current_state();
+      record_steps<S, X, decltype(recs)> watch{s, recs, last, have_last};
+      o.steps = ::flange::detail::checked_run<Method>(s, x, in_.t0, in_.t1, in_.dt, in_.abs_tol, in_.rel_tol,
+                                                       in_.max_rhs_evals, evals, watch);
       int at = 0;
       std::apply([&](auto&... r) {
-        ((r.finish(s, t1, x, o.values.data() + at), at += std::remove_cvref_t<decltype(r)>::template width<S>()),
+        ((r.finish(s, in_.t1, x, o.values.data() + at), at += std::remove_cvref_t<decltype(r)>::template width<S>()),
          ...);
       }, recs);
       o.ok = true;
-      o.steps = steps;
     } catch (const simulation_error& e) {
       o.reason = e.what();
       o.fail_time = e.time;
       o.values.fill(not_seen);
+      o.steps = 0;
     } catch (const std::exception& e) {
       o.reason = e.what();
       o.values.fill(not_seen);
+      o.steps = 0;
     }
     if (!o.ok && have_last)
       for (int i = 0; i < S::n_state; ++i) o.fail_state[i] = static_cast<double>(last[i]);
-    o.rhs_evals = b.rhs_evals;
+    o.rhs_evals = evals;
     return o;
   }
 

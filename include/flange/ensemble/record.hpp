@@ -21,6 +21,8 @@
 //   template <class S> void names(std::string* out) const;  its column names
 //   void start(const S&, double t0, const X& x0);
 //   void step(const V& s);       each accepted step: s.scene, s.t0, s.t1, s.x0, s.x1, s.at(t, x)
+//                                (the integration loop's step_view, simulate/integrate.hpp: the
+//                                ends after the projection, at(t, x) the interpolation, projected)
 //   void finish(const S&, double t1, const X& x1, double* out);
 // so users can write their own.
 #pragma once
@@ -30,23 +32,11 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace flange::ensemble {
 
 inline constexpr double not_seen = std::numeric_limits<double>::quiet_NaN();
-
-/// One accepted step of a dense-output stepper, as recorders see it: the
-/// interval [t0, t1], the states at its ends, and the stepper's interpolation
-/// inside it.
-template <class S, class X, class Stepper>
-struct step_view {
-  const S& scene;
-  double t0, t1;
-  const X& x0;
-  const X& x1;
-  const Stepper& stepper;
-  void at(double t, X& x) const { stepper.calc_state(t, x); }
-};
 
 /// The state at t1.
 struct final_state {
@@ -56,8 +46,14 @@ struct final_state {
   }
   template <class S>
   void names(std::string* out) const {
-    for (int i = 0; i < S::n_q; ++i) out[i] = "q" + std::to_string(i);
-    for (int i = 0; i < S::n_v; ++i) out[S::n_q + i] = "v" + std::to_string(i);
+    // built as a number with a letter put in front, not "q" + std::to_string(i):
+    // GCC 12 warns about the copy a string literal's assignment inlines
+    // (-Wrestrict, a false positive)
+    for (int i = 0; i < S::n_state; ++i) {
+      std::string n = std::to_string(i < S::n_q ? i : i - S::n_q);
+      n.insert(n.begin(), i < S::n_q ? 'q' : 'v');
+      out[i] = std::move(n);
+    }
   }
   template <class S, class X>
   void start(const S&, double, const X&) {}

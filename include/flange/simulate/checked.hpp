@@ -12,10 +12,24 @@
 //   * when the budget of derivative evaluations is spent: the usual sign that
 //     an explicit stepper meets a stiff scene (Boost 1.74's max_step_checker
 //     does not stop a controlled stepper in integrate_const; this does),
+//   * when the state has drifted off the scene's invariants by more than
+//     budget::max_drift: a raw Odeint stepper does not project, so a loop
+//     opens and a quaternion leaves unit norm as the steps' errors add up
+//     (simulate, integrate_projected and the ensembles project after every
+//     step and never drift). The drift is |Φ_i| / L for a loop's constraint
+//     row (L the scene's length scale, at least 1 m) and the largest change
+//     normalize would make to a joint's coordinate (|‖q‖ − 1| for a
+//     quaternion). A stepper's trial stages lie off the constraints by their
+//     own error, so only a drift that every one of 256 evaluations in a row
+//     shows is reported: some accepted state, evaluated as every stepper
+//     evaluates it, is among them. Scenes without loops or quaternions do
+//     not pay for the check.
 // and lets the derivative's own errors (singular mass matrix) through.
 // b.rhs_evals counts the evaluations, so b also reports the cost of a run.
 #pragma once
 #include "flange/detail/inline.hpp"
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -28,7 +42,11 @@ namespace flange {
 
 struct budget {
   long max_rhs_evals = std::numeric_limits<long>::max();
-  long rhs_evals = 0;  ///< evaluations made so far (across copies of the checked system)
+  long rhs_evals = 0;       ///< evaluations made so far (across copies of the checked system)
+  double max_drift = 1e-6;  ///< the largest drift off the invariants that goes on (see above)
+  // The checked system's own: the least drift seen in the current window of evaluations.
+  double drift_least = std::numeric_limits<double>::infinity();
+  int drift_window = 0;
 };
 
 namespace detail {
@@ -53,6 +71,39 @@ template <class State, class T>
   throw simulation_error(concat("flange: ", why, " at t = ", static_cast<double>(t), ", ", describe(x)),
                          static_cast<double>(t));
 }
+/// How far a state is off the scene's invariants, and where most.
+struct drift_report {
+  double value = 0;  ///< |Φ_i| / L, or the largest change normalize makes to a coordinate
+  int joint = -1;    ///< the joint whose coordinates are furthest off, if they are the worst
+  int row = -1;      ///< the loop row furthest off, if it is the worst
+};
+template <class S, class State>
+drift_report invariant_drift(const S& scene, const State& x) {
+  drift_report d;
+  for_links<S>([&](auto l) {
+    using LI = link_info<S, decltype(l)::value>;
+    if constexpr (normalizes<typename S::template component_type<LI::joint>>()) {
+      std::array<double, LI::nq> q;
+      for (int i = 0; i < LI::nq; ++i) q[i] = static_cast<double>(x[LI::q + i]);
+      scene.template component<LI::joint>().normalize(q.data());
+      for (int i = 0; i < LI::nq; ++i) {
+        const double e = std::abs(q[i] - static_cast<double>(x[LI::q + i]));
+        if (!(e <= d.value)) d = {e, LI::joint, -1};
+      }
+    }
+  });
+  if constexpr (has_loops<S>) {
+    std::array<double, S::n_q> q;
+    for (int i = 0; i < S::n_q; ++i) q[i] = static_cast<double>(x[i]);
+    const std::array<double, S::n_v> zero{};
+    const auto k = loop_kinematics<S>(scene, q.data(), zero.data());
+    const double L = length_scale(scene);
+    for (int i = 0; i < n_constraints<S>(); ++i)
+      if (!(std::abs(k.phi[i]) / L <= d.value)) d = {std::abs(k.phi[i]) / L, -1, i};
+  }
+  return d;
+}
+
 inline std::string budget_spent(long max_rhs_evals) {
   return "the budget of " + std::to_string(max_rhs_evals) +
          " derivative evaluations is spent (a stiff scene for an explicit stepper? try rosenbrock4)";
@@ -76,6 +127,7 @@ struct checked_system {
     // rejected.
     if (b->rhs_evals == 1) [[unlikely]]
       check_initial(x, t);
+    if constexpr (detail::needs_projection<S>()) check_drift(x, t);
     (*scene)(x, dxdt, t);
     if (!detail::finite(dxdt)) [[unlikely]]
       detail::fail_at("the derivative is not finite", x, t);
@@ -92,6 +144,33 @@ struct checked_system {
       detail::fail_at(e.what(), x, t);
     }
   }
+  /// Reports a drift that every evaluation of a window of 256 shows.
+  template <class State, class T>
+  void check_drift(const State& x, const T t) const {
+    b->drift_least = std::min(b->drift_least, detail::invariant_drift(*scene, x).value);
+    if (++b->drift_window < drift_window) return;
+    const double least = b->drift_least;
+    b->drift_least = std::numeric_limits<double>::infinity();
+    b->drift_window = 0;
+    if (least > b->max_drift) [[unlikely]]
+      report_drift(x, t, least);
+  }
+  template <class State, class T>
+  [[gnu::cold, gnu::noinline]] void report_drift(const State& x, const T t, double least) const {
+    const auto d = detail::invariant_drift(*scene, x);
+    const std::string what =
+        d.row >= 0 ? detail::concat(detail::describe_loop(*scene, d.row), " is open: its frames are ",
+                                    detail::loop_gap<S>(d.row, d.value * detail::length_scale(*scene)))
+                   : detail::concat("the coordinates of ", detail::describe_component(*scene, d.joint),
+                                    " are ", d.value, " off valid (a quaternion off unit norm)");
+    detail::fail_at(detail::concat("the state has drifted off the scene's invariants: ", what, ", and every one of ",
+                                   drift_window, " evaluations in a row was more than ", least,
+                                   " off (budget::max_drift = ", b->max_drift,
+                                   "); a raw Odeint stepper does not project: integrate with simulate() or "
+                                   "integrate_projected, which keep them, or raise max_drift"),
+                    x, t);
+  }
+  static constexpr int drift_window = 256;
 };
 
 /// The scene as a checked Odeint system; b must outlive the integration.

@@ -18,21 +18,27 @@
 // tests/jacobian_test.cpp keeps the check); the augmented form is right in
 // every version.
 //
+// It runs the integration loop (integrate.hpp) like every other path, so a
+// scene with loops or quaternions is projected after every step, and
+// method::rosenbrock4 is also a method of simulate<Method> and of the
+// ensembles (method.hpp).
+//
 // uBLAS vectors live on the heap: unlike the explicit steppers, this one
 // allocates (Odeint's, per step), which is why it is not in the no-heap test.
 #pragma once
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <functional>
+#include <utility>
 #include <type_traits>
 
-#include <boost/numeric/odeint/integrate/integrate_adaptive.hpp>
-#include <boost/numeric/odeint/integrate/integrate_const.hpp>
 #include <boost/numeric/odeint/stepper/generation.hpp>
 #include <boost/numeric/odeint/stepper/rosenbrock4.hpp>
 #include <boost/numeric/odeint/stepper/rosenbrock4_controller.hpp>
 #include <boost/numeric/odeint/stepper/rosenbrock4_dense_output.hpp>
 
+#include "flange/simulate/integrate.hpp"
 #include "flange/simulate/jacobian.hpp"
 
 namespace flange {
@@ -51,9 +57,142 @@ struct stiff_stats {
   long steps = 0;
 };
 
-/// Integrates x from t0 to t1 with rosenbrock4; observer(x, t) is called at
-/// every step, or every observe_dt when observe_dt > 0. Returns the step count;
-/// stats, if given, receives the evaluation counts (the derivative
+namespace detail {
+/// rosenbrock4 as the integration loop drives it (stepping.hpp): Odeint's
+/// rosenbrock4 with dense output on the uBLAS state (x, τ), whose Jacobian
+/// comes from the scene (Method: jacobian_method::exact or
+/// finite_difference). The system the loop hands it gives the derivative.
+template <class S, class State, class Method>
+class rosenbrock4_stepping {
+  using vector = boost::numeric::ublas::vector<double>;
+  using matrix = boost::numeric::ublas::matrix<double>;
+  static constexpr int n = S::n_state;  // the augmented state is (x, τ): n + 1
+  using dense_stepper = boost::numeric::odeint::rosenbrock4_dense_output<
+      boost::numeric::odeint::rosenbrock4_controller<boost::numeric::odeint::rosenbrock4<double>>>;
+
+ public:
+  static constexpr bool dense = true;
+  rosenbrock4_stepping(const S& scene, double abs_tol, double rel_tol)
+      : scene_(&scene), st_(boost::numeric::odeint::make_dense_output(abs_tol, rel_tol,
+                                                                       boost::numeric::odeint::rosenbrock4<double>())),
+        xs_(n + 1) {}
+  void start(const State& x, double t, double dt, double t1) {
+    x_ = x;
+    load(x, t);
+    st_.initialize(xs_, t, dt);
+    tiny_ = tiny_step(t, t1);
+  }
+  template <class System>
+  void step(System& sys, double t1) {
+    auto f = [&](const vector& xs, vector& d, double) {
+      ++stats_.rhs_evals;
+      State a = x_, b = x_;
+      std::copy_n(xs.begin(), n, a.begin());
+      sys(a, b, xs[n]);
+      std::copy_n(b.begin(), n, d.begin());
+      d[n] = 1;  // τ' = 1
+    };
+    auto jac = [&](const vector& xs, matrix& J, double, vector& dfdt) {
+      ++stats_.jacobian_evals;
+      State a = x_;
+      std::copy_n(xs.begin(), n, a.begin());
+      Eigen::Matrix<double, n, 1> ft;
+      const auto Je = [&] {
+        if constexpr (std::is_same_v<Method, jacobian_method::finite_difference>)
+          return jacobian_finite_difference(*scene_, xs[n], a, &ft);
+        else
+          return jacobian(*scene_, xs[n], a, &ft);
+      }();
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) J(i, j) = Je(i, j);
+        J(i, n) = ft(i);  // ∂f/∂τ
+      }
+      for (int j = 0; j <= n; ++j) J(n, j) = 0;  // τ' = 1 depends on nothing
+      for (int i = 0; i <= n; ++i) dfdt[i] = 0;  // autonomous
+    };
+    const double t = st_.current_time();
+    if (passes(t, st_.current_time_step(), t1)) st_.initialize(st_.current_state(), t, t1 - t);
+    prev_ = x_;
+    try {
+      st_.do_step(std::make_pair(f, jac));
+    } catch (const boost::numeric::odeint::step_adjustment_error&) {
+      throw step_collapse{t, static_cast<double>(st_.current_time_step()), max_rejections};
+    }
+    std::copy_n(st_.current_state().begin(), n, x_.begin());
+    if (std::abs(st_.current_time_step()) < tiny_ && std::abs(t1 - st_.current_time()) > tiny_) [[unlikely]]
+      throw step_collapse{st_.current_time(), static_cast<double>(st_.current_time_step()), 0};
+  }
+  void restart(const State& x) {
+    x_ = x;
+    load(x, st_.current_time());
+    st_.initialize(xs_, st_.current_time(), st_.current_time_step());
+  }
+  const State& state() const { return x_; }
+  const State& previous_state() const { return prev_; }
+  double time() const { return st_.current_time(); }
+  double previous_time() const { return st_.previous_time(); }
+  void at(double t, State& x) const {
+    vector y(n + 1);
+    st_.calc_state(t, y);
+    std::copy_n(y.begin(), n, x.begin());
+  }
+  const stiff_stats& stats() const { return stats_; }
+
+ private:
+  void load(const State& x, double t) {
+    std::copy_n(x.begin(), n, xs_.begin());
+    xs_[n] = t;
+  }
+  const S* scene_;
+  mutable dense_stepper st_;  // its calc_state is not const
+  vector xs_;
+  State x_{}, prev_{};
+  double tiny_ = 0;
+  stiff_stats stats_;
+};
+
+/// A watcher that hands observer(x, t) the states at t0, t0 + Δ, t0 + 2Δ,
+/// … up to t1, from the stepper's interpolation.
+template <class Observer, class State>
+struct observe_every {
+  Observer& observer;
+  double t0, delta;
+  long k = 1;
+  void start(const State& x, double t) { observer(x, t); }
+  template <class View>
+  void step(const View& v) {
+    const double dir = v.t1 >= v.t0 ? 1 : -1;
+    for (double tk = t0 + static_cast<double>(k) * delta; dir * (v.t1 - tk) >= 0;
+         tk = t0 + static_cast<double>(++k) * delta) {
+      if (tk == v.t1) {
+        observer(v.x1, tk);
+      } else {
+        State x = v.x1;
+        v.at(tk, x);
+        observer(x, tk);
+      }
+    }
+  }
+};
+}  // namespace detail
+
+namespace method {
+/// rosenbrock4 with the exact Jacobian (or, with
+/// rosenbrock4_with<jacobian_method::finite_difference>, central differences).
+template <class Jacobian = jacobian_method::exact>
+struct rosenbrock4_with {
+  template <class X, class S>
+  static auto stepping(const S& scene, double abs_tol, double rel_tol) {
+    return detail::rosenbrock4_stepping<S, X, Jacobian>(scene, abs_tol, rel_tol);
+  }
+};
+using rosenbrock4 = rosenbrock4_with<>;
+}  // namespace method
+
+/// Integrates x from t0 to t1 with rosenbrock4, projected after every step
+/// where the scene needs it; observer(x, t) is called at the start and
+/// every step, or every observe_dt when observe_dt > 0. Returns the step
+/// count; stats, if given, receives the evaluation counts (the derivative
 /// evaluations inside a finite-difference Jacobian are not among rhs_evals).
 /// integrate_rosenbrock4<jacobian_method::finite_difference>(…) swaps the
 /// exact Jacobian for central differences.
@@ -61,60 +200,27 @@ template <class Method = jacobian_method::exact, class S, class State, class Obs
 std::size_t integrate_rosenbrock4(const S& scene, State& x, double t0, double t1, double dt, double abs_tol,
                                   double rel_tol, Observer observer = nullptr, double observe_dt = 0,
                                   stiff_stats* stats = nullptr) {
-  namespace odeint = boost::numeric::odeint;
-  using vector = boost::numeric::ublas::vector<double>;
-  using matrix = boost::numeric::ublas::matrix<double>;
   S::require_state_size(x);
-  constexpr int n = S::n_state;  // the augmented state is (x, τ): n + 1
-  stiff_stats counts;
-  auto f = [&](const vector& xs, vector& d, double) {
-    ++counts.rhs_evals;
-    std::array<double, n> a, b;
-    std::copy_n(xs.begin(), n, a.begin());
-    scene(a, b, xs[n]);
-    std::copy_n(b.begin(), n, d.begin());
-    d[n] = 1;  // τ' = 1
+  detail::rosenbrock4_stepping<S, State, Method> st(scene, abs_tol, rel_tol);
+  auto sys = std::cref(scene);
+  auto call = [&](const State& y, double t) {
+    if constexpr (!std::is_same_v<Observer, std::nullptr_t>) observer(y, t);
+    else (void)y, (void)t;
   };
-  auto jac = [&](const vector& xs, matrix& J, double, vector& dfdt) {
-    ++counts.jacobian_evals;
-    std::array<double, n> a;
-    std::copy_n(xs.begin(), n, a.begin());
-    Eigen::Matrix<double, n, 1> ft;
-    const auto Je = [&] {
-      if constexpr (std::is_same_v<Method, jacobian_method::finite_difference>)
-        return jacobian_finite_difference(scene, xs[n], a, &ft);
-      else return jacobian(scene, xs[n], a, &ft);
-    }();
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; j < n; ++j) J(i, j) = Je(i, j);
-      J(i, n) = ft(i);  // ∂f/∂τ
-    }
-    for (int j = 0; j <= n; ++j) J(n, j) = 0;  // τ' = 1 depends on nothing
-    for (int i = 0; i <= n; ++i) dfdt[i] = 0;  // autonomous
-  };
-  auto observe = [&](const vector& xs, double t) {
-    if constexpr (!std::is_same_v<Observer, std::nullptr_t>) {
-      State s = x;
-      std::copy_n(xs.begin(), n, s.begin());
-      observer(s, t);
-    } else {
-      (void)xs, (void)t;
-    }
-  };
-  vector xs(n + 1);
-  std::copy_n(x.begin(), n, xs.begin());
-  xs[n] = t0;
-  auto stepper = odeint::make_dense_output(abs_tol, rel_tol, odeint::rosenbrock4<double>());
-  const auto system = std::make_pair(f, jac);
-  const std::size_t steps = observe_dt > 0
-                                ? odeint::integrate_const(stepper, system, xs, t0, t1, observe_dt, observe)
-                                : odeint::integrate_adaptive(stepper, system, xs, t0, t1, dt, observe);
-  std::copy_n(xs.begin(), n, x.begin());
-  if (stats) {
-    *stats = counts;
-    stats->steps = static_cast<long>(steps);
+  const double h = (t1 >= t0 ? 1 : -1) * std::abs(dt);
+  long steps = 0;
+  if (observe_dt > 0) {
+    detail::observe_every<decltype(call), State> watch{call, t0, (t1 >= t0 ? 1 : -1) * observe_dt};
+    steps = detail::integrate(st, sys, scene, x, t0, t1, h, watch, detail::no_step_check{});
+  } else {
+    detail::observe_steps<decltype(call)> watch{call};
+    steps = detail::integrate(st, sys, scene, x, t0, t1, h, watch, detail::no_step_check{});
   }
-  return steps;
+  if (stats) {
+    *stats = st.stats();
+    stats->steps = steps;
+  }
+  return static_cast<std::size_t>(steps);
 }
 
 }  // namespace flange

@@ -2,35 +2,37 @@
 //
 //   auto x1 = flange::simulate(arm, x0, 0.0, 10.0);                    // dopri5 at 1e-8
 //   auto x1 = flange::simulate(arm, x0, 0.0, 10.0, {.tolerance = 1e-12}, observer);
+//   auto x1 = flange::simulate<method::rosenbrock4>(stiff, x0, 0.0, 10.0);   // rosenbrock4.hpp
 //
-// It steps a controlled dopri5 with a projection after every step
-// (integrate_projected, projected.hpp: loops closed, quaternions normalised;
-// nothing on a scene that has neither), and checks once per step, not at
-// every evaluation: the evaluations are counted against a budget, and each
-// accepted state must be finite (a NaN in any stage reaches the step's
-// result). When one is not, or the step size collapses, the step is replayed
-// through checked(scene, budget) (checked.hpp), whose first non-finite
-// evaluation names its own time, state and reason. So a non-finite state or
-// derivative, a spent budget, a singular mass matrix, a loop left open or a
-// step size that collapses each throw, with the time, the state and the
-// reason, for a few per cent of a step's cost (docs/performance.md). The raw
+// It runs the integration loop (integrate.hpp) with a method's dense-output
+// stepper (method.hpp; dopri5 by default): loops closed and quaternions
+// normalised after every step (nothing on a scene that has neither), and
+// checks once per step, not at every evaluation: the evaluations are
+// counted against a budget, and each accepted state must be finite (a NaN
+// in any stage reaches the step's result). When one is not, or the step
+// size collapses, the step is replayed through checked(scene, budget)
+// (checked.hpp), whose first non-finite evaluation names its own time,
+// state and reason. So a non-finite state or derivative, a spent budget, a
+// singular mass matrix, a loop left open or a step size that collapses each
+// throw, with the time, the state and the reason, for a few per cent of a
+// step's cost (docs/performance.md). An ensemble's case runs the same loop
+// with the same checks, so it ends bit for bit where simulate ends. The raw
 // Odeint system (the scene itself) stays for those who want their own
-// stepper; it checks nothing.
+// stepper; it neither checks nor projects.
 #pragma once
 #include <boost/numeric/odeint/integrate/null_observer.hpp>
-#include <boost/numeric/odeint/stepper/generation.hpp>
-#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <cmath>
 #include <limits>
 
 #include "flange/errors.hpp"
 #include "flange/simulate/checked.hpp"
-#include "flange/simulate/projected.hpp"
+#include "flange/simulate/integrate.hpp"
+#include "flange/simulate/method.hpp"
 
 namespace flange {
 
 struct simulate_options {
-  double tolerance = 1e-8;  ///< dopri5's absolute and relative tolerance
+  double tolerance = 1e-8;  ///< the stepper's absolute and relative tolerance
   double dt = 1e-3;         ///< the first step's size
   long max_rhs_evals = 100'000'000;
 };
@@ -50,60 +52,74 @@ struct counted_system {
   }
 };
 
-/// simulate's check after each step, and the replay that names the reason.
-template <class S, class Stepper>
+/// The loop's check in a checked run (simulate, the ensembles): after each
+/// step the state must be finite; the replay names the reason.
+template <class S, class Stepping>
 struct checked_steps {
-  static constexpr bool wants_previous = true;
   const S* scene;
-  Stepper fresh;  ///< an unused stepper like the one stepping, for replays
+  Stepping fresh;  ///< an unused stepping like the one stepping, for replays
   template <class State>
-  void after(const State& prev, double t_prev, double h, const State& x, double t) const {
+  void after(const State& prev, double t_prev, const State& x, double t) const {
     if (finite(x)) [[likely]]
       return;
-    replay(prev, t_prev, h);
+    replay(prev, t_prev, t - t_prev);
     fail_at(concat("the state is not finite after the step from t = ", t_prev, " (", describe(prev), ")"), x, t);
   }
   template <class State>
   void collapsing(const State& x, double t, double h) const {
-    replay(x, t, h);  // a non-finite stage is the true reason, if there is one
+    replay(x, t, h);
   }
   /// The step from (x, t) of size h under per-evaluation checks: throws at
   /// its first non-finite evaluation.
   template <class State>
   void replay(const State& x, double t, double h) const {
     budget b;
-    Stepper st = fresh;
-    State y = x;
-    st.try_step(checked(*scene, b), y, t, h);
+    auto sys = checked(*scene, b);
+    Stepping st = fresh;
+    st.start(x, t, h, t + h);
+    try {
+      st.step(sys, t + h);
+    } catch (const step_collapse&) {
+    }
   }
 };
+
+/// Checks simulate's options, and the times of a run.
+inline void check_run(const char* who, double tolerance, double t0, double t1, double dt) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  if (!(tolerance >= 10 * eps))
+    throw parameter_error(concat("flange: ", who, ": tolerance ", tolerance,
+                                 " cannot be met in double precision (round-off alone is ", eps,
+                                 " per step); use 1e-14 or more"));
+  if (!(std::isfinite(t0) && std::isfinite(t1)))
+    throw parameter_error(concat("flange: ", who, ": the times t0 = ", t0, " and t1 = ", t1, " must be finite"));
+  if (!(dt > 0))
+    throw parameter_error(concat("flange: ", who, ": the first step dt = ", dt, " must be positive"));
+}
+
+/// A checked run of the loop with a method: what simulate and an ensemble's
+/// case both do. Returns the number of steps; evals counts the evaluations.
+template <class Method, class S, class State, class Watcher>
+long checked_run(const S& scene, State& x, double t0, double t1, double dt, double abs_tol, double rel_tol,
+                 long max_rhs_evals, long& evals, Watcher& watcher) {
+  auto st = method_stepping<Method, State>(scene, abs_tol, rel_tol);
+  const checked_steps<S, decltype(st)> check{&scene, st};
+  counted_system<S> sys{&scene, &evals, max_rhs_evals};
+  return integrate(st, sys, scene, x, t0, t1, (t1 >= t0 ? 1 : -1) * dt, watcher, check);
+}
 }  // namespace detail
 
 /// The state at t1 from x0 at t0; observer(x, t) sees the start and every
-/// step. Throws simulation_error (time, state, reason) or parameter_error.
-template <class S, class Observer = boost::numeric::odeint::null_observer>
+/// step. Method: method::dopri5 (the default), method::bulirsch_stoer,
+/// method::rosenbrock4 (simulate/rosenbrock4.hpp) or one's own (method.hpp).
+/// Throws simulation_error (time, state, reason) or parameter_error.
+template <class Method = method::dopri5, class S, class Observer = boost::numeric::odeint::null_observer>
 typename S::state_type simulate(const S& scene, typename S::state_type x0, double t0, double t1,
                                 const simulate_options& o = {}, Observer observer = Observer()) {
-  namespace odeint = boost::numeric::odeint;
-  constexpr double eps = std::numeric_limits<double>::epsilon();
-  if (!(o.tolerance >= 10 * eps))
-    throw parameter_error(detail::concat("flange: simulate: tolerance ", o.tolerance,
-                                         " cannot be met in double precision (round-off alone is ", eps,
-                                         " per step); use 1e-14 or more"));
-  if (!(std::isfinite(t0) && std::isfinite(t1)))
-    throw parameter_error(detail::concat("flange: simulate: the times t0 = ", t0, " and t1 = ", t1, " must be finite"));
-  if (!(o.dt > 0))
-    throw parameter_error(detail::concat("flange: simulate: the first step dt = ", o.dt, " must be positive"));
-  if (!detail::finite(x0))
-    throw simulation_error(
-        detail::concat("flange: the state is not finite at t = ", t0, " (the initial state), ", detail::describe(x0)),
-        t0);
-  check_coordinates(scene, x0);
-  auto stepper = odeint::make_controlled(o.tolerance, o.tolerance, odeint::runge_kutta_dopri5<typename S::state_type>());
+  detail::check_run("simulate", o.tolerance, t0, t1, o.dt);
   long evals = 0;
-  const detail::checked_steps<S, decltype(stepper)> check{&scene, stepper};
-  detail::integrate_projected_with(stepper, detail::counted_system<S>{&scene, &evals, o.max_rhs_evals}, scene, x0, t0,
-                                   t1, (t1 > t0 ? 1 : -1) * o.dt, observer, check);
+  detail::observe_steps<Observer> watch{observer};
+  detail::checked_run<Method>(scene, x0, t0, t1, o.dt, o.tolerance, o.tolerance, o.max_rhs_evals, evals, watch);
   return x0;
 }
 

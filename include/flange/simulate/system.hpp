@@ -12,6 +12,7 @@
 #pragma once
 #include "flange/detail/inline.hpp"
 #include <array>
+#include <cmath>
 #include <utility>
 
 #include "flange/dynamics/algorithm.hpp"
@@ -119,12 +120,11 @@ constexpr bool needs_projection() {
 }
 }  // namespace detail
 
-/// Keeps every joint's coordinates valid (a quaternion back to unit norm)
-/// and, in a scene with loops, (q, v) on the loops' constraints (Newton on
-/// Φ(q) = 0, then G·v = 0, each the least change: dynamics/loop_solve.hpp): a
-/// projection between steps (integrate_projected does it after each step).
+namespace detail {
+/// normalize's projection; reports what the loops' part left (closure:
+/// nothing in a scene without loops) for a caller that judges it.
 template <class S, class State>
-void normalize(const S& scene, State& x) {
+closure project_state(const S& scene, State& x) {
   S::require_state_size(x);
   detail::for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
     using LI = detail::link_info<S, decltype(l)::value>;
@@ -133,8 +133,22 @@ void normalize(const S& scene, State& x) {
   if constexpr (detail::has_loops<S>) {
     std::array<bool, S::n_v> free;
     free.fill(true);
-    detail::project_onto_loops(scene, x.data(), x.data() + S::n_q, free);
+    return detail::project_onto_loops(scene, x.data(), x.data() + S::n_q, free);
+  } else {
+    return {};
   }
+}
+}  // namespace detail
+
+/// Keeps every joint's coordinates valid (a quaternion back to unit norm)
+/// and, in a scene with loops, (q, v) on the loops' constraints (Newton on
+/// Φ(q) = 0, then G·v = 0, each the least change: dynamics/loop_solve.hpp): a
+/// projection between steps. Every integration path but the raw Odeint one
+/// does it after each step and judges the result (simulate/integrate.hpp);
+/// this one does not judge.
+template <class S, class State>
+void normalize(const S& scene, State& x) {
+  (void)detail::project_state(scene, x);
 }
 
 namespace detail {
@@ -265,6 +279,41 @@ void close_loops(const S& scene, State& x) {
                                            "mechanism, or it is at a dead point; ",
                                            detail::describe_state(x.data(), S::n_q, x.data() + S::n_q, S::n_v)));
   }
+}
+
+/// How far a state is off the scene's loop constraints, row by row: Φ(q)
+/// (metres for a translation row, radians for a rotation row) and
+/// Φ̇ = G·v. Rows come cut joint by cut joint, in the order of the cuts
+/// (docs/loops.md). A scene without loops has no rows.
+template <int M>
+struct loop_residuals {
+  std::array<double, M> phi{}, phid{};
+  /// max |Φ_i| (0 without rows)
+  [[nodiscard]] double max_phi() const { return max_abs(phi); }
+  /// max |Φ̇_i| (0 without rows)
+  [[nodiscard]] double max_phid() const { return max_abs(phid); }
+
+ private:
+  static double max_abs(const std::array<double, M>& a) {
+    double m = 0;
+    for (double e : a) m = std::abs(e) > m || std::isnan(e) ? std::abs(e) : m;
+    return m;
+  }
+};
+
+/// Φ(q) and G·v at the state x (see loop_residuals).
+template <class S, class State>
+loop_residuals<detail::n_constraints<S>()> loop_residual(const S& scene, const State& x) {
+  S::require_state_size(x);
+  loop_residuals<detail::n_constraints<S>()> r;
+  if constexpr (detail::has_loops<S>) {
+    const auto k = detail::loop_kinematics<S>(scene, x.data(), x.data() + S::n_q);
+    r.phi = k.phi;
+    r.phid = k.phid;
+  } else {
+    (void)scene;
+  }
+  return r;
 }
 
 /// Throws parameter_error naming the loop if the state does not close the

@@ -1,0 +1,57 @@
+// Integration methods by name, for simulate<Method>(…) and the ensembles
+// (ensemble::make_with<Method>): each makes the stepping adapter
+// (stepping.hpp) the integration loop drives, for a scene and a state type,
+// at an absolute and a relative tolerance.
+//
+//   method::dopri5          Dormand–Prince 5(4) with dense output (the default):
+//                           Odeint's make_dense_output(…, runge_kutta_dopri5)
+//   method::bulirsch_stoer  Bulirsch–Stoer with dense output: high order for smooth
+//                           scenes at tight tolerances (Odeint's implementation
+//                           allocates two small vectors per step)
+//   method::rosenbrock4     the stiff stepper with the exact Jacobian (rosenbrock4.hpp)
+//
+// A method of one's own is a type with make<X>(abs_tol, rel_tol) returning
+// an Odeint dense-output stepper, or with stepping<X>(scene, abs_tol,
+// rel_tol) returning an adapter.
+#pragma once
+#include <boost/numeric/odeint/stepper/bulirsch_stoer_dense_out.hpp>
+#include <boost/numeric/odeint/stepper/generation.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
+
+#include "flange/simulate/stepping.hpp"
+
+namespace flange {
+
+namespace method {
+/// Dormand–Prince 5(4) with dense output.
+struct dopri5 {
+  template <class X>
+  static auto make(double abs_tol, double rel_tol) {
+    namespace odeint = boost::numeric::odeint;
+    return odeint::make_dense_output(abs_tol, rel_tol, odeint::runge_kutta_dopri5<X>());
+  }
+};
+/// Bulirsch–Stoer with dense output.
+struct bulirsch_stoer {
+  template <class X>
+  static auto make(double abs_tol, double rel_tol) {
+    return boost::numeric::odeint::bulirsch_stoer_dense_out<X>(abs_tol, rel_tol);
+  }
+};
+}  // namespace method
+
+namespace detail {
+/// The stepping adapter of a method for the scene S and the state X.
+template <class Method, class X, class S>
+auto method_stepping(const S& scene, double abs_tol, double rel_tol) {
+  if constexpr (requires { Method::template stepping<X>(scene, abs_tol, rel_tol); }) {
+    return Method::template stepping<X>(scene, abs_tol, rel_tol);
+  } else {
+    (void)scene;
+    using Stepper = decltype(Method::template make<X>(abs_tol, rel_tol));
+    return dense_stepping<Stepper, X>(Method::template make<X>(abs_tol, rel_tol));
+  }
+}
+}  // namespace detail
+
+}  // namespace flange
