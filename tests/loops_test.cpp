@@ -204,7 +204,9 @@ TEST_CASE("a spatial RSUR loop with Spherical and Universal joints conserves ene
   // (invariant_scenes.hpp).
   using S = invariant_scenes::Rsur;
   STATIC_REQUIRE(detail::n_constraints<S>() == 5);
-  auto [sp, x] = invariant_scenes::rsur_closed();
+  auto closed = invariant_scenes::rsur_closed();  // a lambda cannot capture a structured binding in clang 14
+  const auto& sp = closed.scene;
+  auto& x = closed.x;
   const double E0 = recover(sp, 0.0, x).energy();
   double dE = 0, drift = 0, residual = 0;
   auto stepper = odeint::make_controlled(1e-12, 1e-12, odeint::runge_kutta_dopri5<S::state_type>());
