@@ -1,5 +1,5 @@
-// The articulated body's blocks (dynamics/articulated_body.hpp,
-// aba_up_block): in a large scene, links in a row of one kind run their
+// The articulated body's blocks (dynamics/articulated_body.hpp, the step
+// objects' block<R>; schedule.hpp, the plan): in a large scene, links in a row of one kind run their
 // steps up and down as one, each step handing the next its articulated
 // inertia, bias force or acceleration in registers (planar scenes; a
 // spatial link's steps run alone, costs.hpp). Chains of 13 links computed in
@@ -28,6 +28,9 @@ namespace {
 
 constexpr int N = 13;
 
+/// The plan of the shared form for scene S (dynamics/schedule.hpp).
+template <class S>
+using shared_plan = detail::aba_plan<algebra_t<S>, S, aba_steps::shared, detail::aba_kinds<algebra_t<S>, S, double>>;
 /// The longest block the shared form runs for scene S (costs.hpp).
 template <class S>
 constexpr int block_links = algebra_t<S>::planar ? detail::aba_block_links.planar : detail::aba_block_links.spatial;
@@ -35,9 +38,9 @@ constexpr int block_links = algebra_t<S>::planar ? detail::aba_block_links.plana
 /// The block lengths the shared form runs for scene S.
 template <class S>
 std::vector<int> block_lengths() {
-  using blocks = detail::aba_blocks<algebra_t<S>, S, double, block_links<S>>;
+  constexpr auto units = shared_plan<S>::units;
   std::vector<int> r;
-  for (int u = 0; u < blocks::value.n; ++u) r.push_back(blocks::value.len[u]);
+  for (int u = 0; u < units.n; ++u) r.push_back(units.len[u]);
   return r;
 }
 
@@ -92,10 +95,10 @@ TEST_CASE("the step down is early on a chain and late on a branched tree, and bo
   const auto t = models::legged<4, 4>();
   using C = std::remove_cvref_t<decltype(c)>;
   using L = std::remove_cvref_t<decltype(t)>;
-  STATIC_REQUIRE(detail::aba_workspace<algebra_t<C>, C, double>::early);
+  STATIC_REQUIRE(shared_plan<C>::early);
   // 17 links (the trunk and four legs of four), the deepest 5 deep.
   STATIC_REQUIRE(detail::tree_depth<L>() == 5);
-  STATIC_REQUIRE(!detail::aba_workspace<algebra_t<L>, L, double>::early);
+  STATIC_REQUIRE(!shared_plan<L>::early);
   // The base's quaternion (q[3 … 6]) must be a unit one.
   const double worst = test::worst_aba_disagreement(t, 11, 20, [](auto& q) {
     double n2 = 0;

@@ -30,10 +30,10 @@ void check_shape(test::law_errors& worst) {
   worst.power = std::max(worst.power, e.power);
 }
 
-/// How many joints of each kind a shape has (0 one-axis, 2 … 6).
-constexpr std::array<int, 7> kinds(const models::tree_shape& s) {
-  std::array<int, 7> k{};
-  for (int i = 0; i < s.n; ++i) ++k[s.kind[i]];
+/// How many joints of each kind a shape has (revolute: Revolute or Prismatic).
+constexpr std::array<int, models::n_joint_kinds> kinds(const models::tree_shape& s) {
+  std::array<int, models::n_joint_kinds> k{};
+  for (int i = 0; i < s.n; ++i) ++k[int(s.kind[i])];
   return k;
 }
 }  // namespace
@@ -43,7 +43,7 @@ TEST_CASE("random spatial trees of every joint kind: derivative = articulated-bo
   constexpr auto a = kinds(models::random_tree_shape(31, 8, false, true));
   constexpr auto b = kinds(models::random_tree_shape(32, 8, false, true));
   constexpr auto c = kinds(models::random_tree_shape(33, 8, false, true));
-  for (int k : {2, 3, 4, 5, 6}) CHECK(a[k] + b[k] + c[k] > 0);
+  for (int k = int(models::joint_kind::spherical); k < models::n_joint_kinds; ++k) CHECK(a[k] + b[k] + c[k] > 0);
   test::law_errors worst;
   check_shape<31, 8, false>(worst);
   check_shape<32, 8, false>(worst);

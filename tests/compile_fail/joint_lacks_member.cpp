@@ -1,7 +1,10 @@
 // A user's own joint type: a hinge about frame_a's z axis, written against
 // the joint concept (core/joint.hpp, docs/architecture.md "Write your own
-// joint"). The ok half has every member and simulates; the ko half misses
-// qdot and is refused at the scene, naming the joint and the member.
+// joint"). The ok half has every member it must have (normalize and
+// relative_pose are optional: the concept's defaults) and simulates; the ko
+// half misses qdot, or with FLANGE_KO_PROJECT its motion's project
+// (joint_motion_lacks_member.cpp), and is refused at the scene, naming the
+// joint and the member.
 #include <flange/equations_of_motion.hpp>
 using namespace flange;
 
@@ -41,8 +44,10 @@ struct Hinge {
     zero_vec<T> w_bias(const V&) const { return {}; }
     template <class V>
     zero_vec<T> pd_bias(const V&) const { return {}; }
+#if !(defined(FLANGE_KO) && defined(FLANGE_KO_PROJECT))
     template <class N, class F>
     std::array<T, 1> project(const N& n, const F&) const { return {n.template get<2>()}; }
+#endif
     template <int>
     motion_pair<axial_vec<T, 2>, zero_vec<T>> col() const { return {axial<T, 2>(T(1)), {}}; }
   };
@@ -51,15 +56,11 @@ struct Hinge {
     using std::cos, std::sin;
     return {{cos(q[0]), sin(q[0])}};
   }
-#ifndef FLANGE_KO
+#if !defined(FLANGE_KO) || defined(FLANGE_KO_PROJECT)
   template <class T>
   void qdot(const T*, const T* v, T* qd) const { qd[0] = v[0]; }
 #endif
-  template <class T>
-  void normalize(T*) const {}
   static std::array<double, 1> neutral() { return {0.0}; }
-  template <class T>
-  pose<T> relative_pose(const T* q) const { return {axis_rotation<T>(Vec3<T>::UnitZ(), q[0]), Vec3<T>::Zero()}; }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const { set(0, q[0], v[0]); }
   template <class T, class Get>

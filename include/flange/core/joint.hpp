@@ -13,14 +13,15 @@
 //   motion<T, Dir, NeedRotation>(q)   its motion at q (below); Dir = +1 when
 //                                     frame_a faces the World, −1 otherwise
 //   qdot(q, v, qd)                    q̇ from v
-//   normalize(q)                      keeps q valid (a quaternion's norm); may do nothing
-//                                     (normalizes<J>() below says whether it does)
-//   relative_pose(q)                  frame_b's pose in frame_a (for cut forces and output)
 //   write_internals(q, v, set)        its DAE internals (φ, R_rel, …) and their rates
 //   read_state(get, q, v)             q and v back from those internals (the residual's inputs)
 //   planar_normal(), moves_in_plane(K)  what planar arithmetic needs to know
 //
-// and optionally generalized_force(t, x, tau) (inputs and axis laws on its
+// and optionally normalize(q), which keeps q valid (a quaternion's norm;
+// without it q is always valid: normalize_joint below), relative_pose(q),
+// frame_b's pose in frame_a (without it, the motion<+1>(q) densified:
+// relative_pose_of below; tests/joint_laws_test.cpp holds every joint's to
+// its motion), generalized_force(t, x, tau) (inputs and axis laws on its
 // coordinates), elastic_energy(q), fixed_subspace (true when m.col<k>() is
 // the same at every q, either way round: a scene whose joints all hang from
 // the World then folds its constant mass matrix, dynamics/model.hpp), and as_cut: what it leaves free when it
@@ -68,6 +69,7 @@
 #include <array>
 #include <concepts>
 #include <type_traits>
+#include <utility>
 
 #include "flange/core/component.hpp"
 #include "flange/core/frame_kinematics.hpp"
@@ -155,6 +157,30 @@ concept axis_framed_joint = angle_joint<J> && requires(const J& j, const double*
   j.template motion_in_axis_frame<double, 1>(q, a);
 };
 
+/// frame_b's pose in frame_a at q: the joint's relative_pose(q) if it
+/// declares one, else its motion at q with frame_a toward the World (E
+/// rotates frame_a coordinates into frame_b's, p is frame_b's origin in
+/// frame_a), densified.
+template <class J, class T>
+pose<T> relative_pose_of(const J& j, const T* q) {
+  if constexpr (requires { j.relative_pose(q); }) {
+    return j.relative_pose(q);
+  } else {
+    const auto m = j.template motion<T, 1, true>(q);
+    pose<T> x;
+    for (int k = 0; k < 3; ++k) x.R.col(k) = rot(m.E, to_svec(Vec3<T>(Vec3<T>::Unit(k)))).dense();
+    x.p = m.p.dense();
+    return x;
+  }
+}
+
+/// Keeps q valid: the joint's normalize(q) if it declares one (a quaternion
+/// back to unit norm); a joint without it has no invalid q.
+template <class J, class T>
+void normalize_joint(const J& j, T* q) {
+  if constexpr (requires { j.normalize(q); }) j.normalize(q);
+}
+
 /// Whether a joint's normalize(q) changes anything, so that a stepper must
 /// project between steps: a joint says so with `static constexpr bool
 /// normalizes`; by default, a joint whose coordinates outnumber its rates
@@ -186,12 +212,31 @@ template <class J>
 concept motion = requires(const J& j, const double* q) { j.template motion<double, 1, true>(q); };
 template <class J>
 concept qdot = requires(const J& j, const double* q, const double* v, double* o) { j.qdot(q, v, o); };
+/// The motion object's members (above), one by one.
 template <class J>
-concept normalize = requires(const J& j, double* q) { j.normalize(q); };
+using motion_of = decltype(std::declval<const J&>().template motion<double, 1, true>(std::declval<const double*>()));
 template <class J>
-concept relative_pose = requires(const J& j, const double* q) {
-  { j.relative_pose(q) } -> std::same_as<flange::pose<double>>;
+concept motion_pose = requires(const motion_of<J>& m) {
+  m.E;
+  m.p;
 };
+template <class J>
+concept motion_rates = requires(const motion_of<J>& m, const double* v) {
+  m.w(v);
+  m.pd(v);
+};
+template <class J>
+concept motion_biases = requires(const motion_of<J>& m, const double* v) {
+  m.w_bias(v);
+  m.pd_bias(v);
+};
+template <class J>
+concept motion_project = requires(const motion_of<J>& m, const svec<double, 7>& n) { m.project(n, n); };
+template <class J>
+concept motion_columns = requires(const motion_of<J>& m) { m.template col<0>(); };
+template <class J>
+concept motion_members =
+    motion_pose<J> && motion_rates<J> && motion_biases<J> && motion_project<J> && motion_columns<J>;
 template <class J>
 concept planar_info = requires {
   { J::planar_normal() } -> std::convertible_to<int>;
@@ -207,8 +252,7 @@ concept internals_io = requires(const J& j, const double* q, const double* v, do
 template <class J>
 concept Joint = Component<J> && J::kind == role::joint && joint_requirements::sizes<J> &&
                 joint_requirements::reversible<J> && joint_requirements::neutral<J> && joint_requirements::motion<J> &&
-                joint_requirements::qdot<J> && joint_requirements::normalize<J> &&
-                joint_requirements::relative_pose<J> && joint_requirements::planar_info<J> &&
-                joint_requirements::internals_io<J>;
+                joint_requirements::motion_members<J> && joint_requirements::qdot<J> &&
+                joint_requirements::planar_info<J> && joint_requirements::internals_io<J>;
 
 }  // namespace flange

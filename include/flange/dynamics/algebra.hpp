@@ -156,6 +156,12 @@ struct rigid_view {
 template <class T, class H, class I>
 rigid_view(T, H, I) -> rigid_view<T, H, I>;
 
+/// I_c·(ω, v) for a motion (ω, v): (I·ω + h × v, m·v + ω × h).
+template <class I_, class Mot>
+FLANGE_INLINE auto inertia_times(const I_& c, const Mot& s) {
+  return force_pair{c.I_o * s.ang + cross(c.h, s.lin), c.m * s.lin + cross(s.ang, c.h)};
+}
+
 /// A link's own inertia I (the model's record) in algebra A, with what its
 /// bodies' types rule out typed away: a first moment known zero (HZero), a
 /// rotational inertia of kind IKind (inertia_kinds). A function of the

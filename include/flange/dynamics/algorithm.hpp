@@ -17,13 +17,9 @@
 // with one set of constants for the spatial algebra and one for the planar,
 // and b and c larger for a link turned by a general rotation than by a
 // typed one (a coordinate rotation, or the product of two that a link in its
-// joint's axis frame turns by: axis_frames.hpp). The crossover this gives on
-// chains: 7 links with coordinate or run-time axes (costs.hpp: measured 7
-// with run-time axes and 8 with typed ones, 3 % apart at 7), 11 in a plane.
-// (Measured with tools/chain_counts.sh; beyond about 6 links Newton–Euler
-// costs more per link than the model says, as its unrolled code outgrows the
-// processor's caches of decoded instructions, while the articulated body
-// then shares its steps between links: docs/performance.md.)
+// joint's axis frame turns by: axis_frames.hpp). The crossovers this gives on
+// chains, and how they were measured (tools/chain_counts.sh), are in
+// docs/performance.md, "Choosing the algorithm".
 // A scene with loops always takes the first: its constraint solve needs M.
 #pragma once
 #include "flange/detail/inline.hpp"
@@ -75,11 +71,9 @@ namespace detail {
 /// derivative writes ẋ element by element and a stepper's vectorised stage
 /// sums read the two elements of such a state at once, which the processor
 /// cannot forward from two stores: each stage waits for them to retire.
-/// Measured (runge_kutta4 steps, g++ 12 -O3): the arm 112 → 58 ns and a
-/// one-link spatial chain 141 → 96 ns inlined, while the crane (80 → 96 ns),
-/// a 2-link planar chain (120 → 120 ns) and a free body (355 → 442 ns) gain
-/// nothing or lose: there a call stays, and a stepper's stages share one
-/// copy of the derivative.
+/// Larger scenes gain nothing or lose (docs/performance.md, "Why the hot
+/// path is written as it is"): there a call stays, and a stepper's stages
+/// share one copy of the derivative.
 template <class S>
 constexpr bool inline_derivative() {
   return algorithm_for<S>() == forward_algorithm::newton_euler_mass_matrix && algorithm_estimates<S>().first <= 20;

@@ -33,6 +33,7 @@
 #include <utility>
 
 #include "flange/core/joint.hpp"
+#include "flange/math/rotation.hpp"
 #include "flange/math/types.hpp"
 
 namespace flange::detail {
@@ -114,9 +115,10 @@ constexpr int set_rotation_kind(int set) {
 /// normal to m (the aligned child's axis) where the two axes are not
 /// parallel.
 inline Mat3d axis_frame_rotation(const Vec3d& n, const Vec3d& m = Vec3d::Zero()) {
-  const Vec3d a = std::abs(n.x()) < 0.9 ? Vec3d::UnitX() : Vec3d::UnitY();
+  Vec3d e1, e2;
+  complete_basis(n, e1, e2);
   const Vec3d nm = n.cross(m);
-  const Vec3d x = nm.norm() > 1e-9 ? Vec3d(nm.normalized()) : Vec3d((a - a.dot(n) * n).normalized());
+  const Vec3d x = nm.norm() > 1e-9 ? Vec3d(nm.normalized()) : e1;
   Mat3d A;
   A.row(0) = x.transpose();
   A.row(1) = n.cross(x).transpose();

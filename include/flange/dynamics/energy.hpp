@@ -44,8 +44,8 @@ FLANGE_INLINE void frame_pose_and_velocity(const S& scene, const LinkPoses& lk, 
   const Mat3<T> Rs = scene.model().set_rotation[s].template cast<T>();
   k.R = Rs * L.R;
   k.w = Rs * L.w;
-  k.r = L.r + L.R.transpose() * p;
-  k.v = L.v + L.R.transpose() * L.w.cross(p);
+  k.r = point_position(L, p);
+  k.v = point_velocity(L, p);
 }
 
 /// The energies of the scene whose frames have the poses and velocities in

@@ -117,8 +117,8 @@ FLANGE_INLINE frame_kinematics<T> frame_from_link(const S& scene, const link_pos
       f.R = L.R;
       f.w = L.w;
     }
-    f.r = L.r + L.R.transpose() * p;
-    f.v = L.v + L.R.transpose() * L.w.cross(p);
+    f.r = point_position(L, p);
+    f.v = point_velocity(L, p);
   }
   return f;
 }

@@ -168,8 +168,7 @@ FLANGE_INLINE void accelerations_inline(const S& scene, const T& t, const T* q, 
 template <class A, class S, class T>
 void accelerations_in(const S& scene, const T& t, const T* q, const T* v, T* vdot) {
   // The body of accelerations_inline, not a call to it: GCC compiles the
-  // always-inline form 1 % longer into this function (chain6: 1236 against
-  // 1213 instructions per call).
+  // always-inline form longer into this function.
   const auto motions = detail::algebra_motions<A>(scene, q);
   detail::solve_accelerations<A>(scene, t, q, v, vdot, motions, detail::pose_motions<A>(scene, q, motions));
 }

@@ -1,15 +1,11 @@
-// Forward kinematics over the tree, and the depth-first walk every recursive
-// algorithm is built on.
-//
-// walk<L>(ctx, d) visits link L with the value d passed down from its parent
-// (ctx.at<L>(d) starts what it will return), then each child C with
-// ctx.down<L, C>(d), gathers what each child returns with ctx.gather<L, C>,
-// and returns ctx.leave<L>(d, …) to its parent. A pass is a
-// context: Newton–Euler passes kinematics down and wrenches up; the mass
-// matrix passes composite inertias up; recovery passes world poses down. The
-// walk is unrolled at compile time, so each link is a straight-line block,
-// and every value has its own type (math/sparse.hpp): what is zero for a link
-// is never computed.
+// Forward kinematics over the tree: a link's kinematics from its parent's
+// (forward_step); the pose pass, a walk (schedule.hpp) that passes world
+// poses down; the accelerations pass (recovery at v̇, loop constraints'
+// biases at v̇ = 0); and a frame's motion from its link's (point_position,
+// point_velocity, point_acceleration). The other walks are passes of their
+// own: Newton–Euler passes kinematics down and wrenches up (newton_euler.hpp),
+// the mass matrix composite inertias up (mass_matrix.hpp). Every value has
+// its own type (math/sparse.hpp): what is zero for a link is never computed.
 //
 // Per link, in link coordinates at its origin, with the World's gravity as a
 // base acceleration −g ("classic" accelerations, no linear velocity needed):
@@ -27,6 +23,7 @@
 
 #include "flange/core/frame_kinematics.hpp"
 #include "flange/dynamics/links.hpp"
+#include "flange/dynamics/schedule.hpp"
 
 namespace flange::detail {
 
@@ -69,45 +66,6 @@ FLANGE_INLINE auto forward_step(const K& P, const M& m, const V& v, const VD& vd
   return link_kinematics{wP + wr, wd, rot(m.E(), ap)};
 }
 
-// ------------------------------------------------------------ the walk
-
-template <class S, int L, class Ctx, class D>
-auto walk(Ctx& ctx, const D& down);
-
-template <class S, int L, class Ctx, class D>
-[[gnu::noinline]] auto walk_call(Ctx& ctx, const D& down) {
-  return walk<S, L>(ctx, down);
-}
-/// The walk of child L's subtree: inlined, or a call when split_links<S>
-/// (links.hpp, the rule of for_links_split). Inlined, a long chain's walk
-/// nests every link's step into one function, which took the optimiser more
-/// than 6 GB at 128 links.
-template <class S, int L, class Ctx, class D>
-FLANGE_INLINE auto walk_subtree(Ctx& ctx, const D& down) {
-  if constexpr (split_links<S>) return walk_call<S, L>(ctx, down);
-  else return walk<S, L>(ctx, down);
-}
-
-template <class S, int L, std::size_t I, class Ctx, class D, class Acc>
-FLANGE_INLINE auto walk_children(Ctx& ctx, const D& down, Acc acc) {
-  constexpr auto cs = children<S, L>();
-  if constexpr (I == cs.size()) {
-    return acc;
-  } else {
-    constexpr int C = cs[I];
-    auto r = walk_subtree<S, C>(ctx, ctx.template down<L, C>(down));
-    return walk_children<S, L, I + 1>(ctx, down, ctx.template gather<L, C>(std::move(acc), std::move(r)));
-  }
-}
-
-template <class S, int L, class Ctx, class D>
-FLANGE_INLINE auto walk(Ctx& ctx, const D& down) {
-  return ctx.template leave<L>(down, walk_children<S, L, 0>(ctx, down, ctx.template at<L>(down)));
-}
-
-/// Nothing to pass up.
-struct nothing {};
-
 // ------------------------------------------------------------ world poses
 
 /// A link's pose and motion in the world, dense: what force elements between
@@ -122,7 +80,7 @@ struct link_pose {
 
 /// The pose pass: R, r, ṙ and ω of every link (link 0 is the World).
 template <class S, class T, class Motions>
-struct pose_pass {
+struct pose_pass : down_only_walk {
   const Motions& motions;
   const T* v;
   std::array<link_pose<T>, S::tree.n_links>& out;
@@ -151,23 +109,68 @@ struct pose_pass {
     }
     return c;
   }
-  template <int, int>
-  nothing gather(nothing, nothing) {
-    return {};
-  }
-  template <int, class D>
-  nothing leave(const D&, nothing) {
-    return {};
-  }
 };
 
 /// World poses and velocities of every link at (q, v); motions in the spatial algebra.
 template <class S, class T, class Motions>
 FLANGE_INLINE std::array<link_pose<T>, S::tree.n_links> link_poses(const Motions& motions, const T* v) {
   std::array<link_pose<T>, S::tree.n_links> out;
-  pose_pass<S, T, Motions> ctx{motions, v, out};
+  pose_pass<S, T, Motions> ctx{{}, motions, v, out};
   walk<S, 0>(ctx, link_pose<T>{Mat3<T>::Identity(), Vec3<T>::Zero(), Vec3<T>::Zero(), Vec3<T>::Zero()});
   return out;
+}
+
+// ------------------------------------------------------------ accelerations
+
+/// The accelerations pass: ω̇ and a of every link (link coordinates, dense)
+/// at rates v and v̇ (a pointer, or no_rates: v̇ = 0), by forward_step.
+template <class S, class T, class Motions, class VD>
+struct acceleration_pass : down_only_walk {
+  const Motions& motions;
+  const T* v;
+  VD vdot;
+  std::array<Vec3<T>, S::tree.n_links>& wd;
+  std::array<Vec3<T>, S::tree.n_links>& a;
+
+  template <int L, class K>
+  nothing at(const K& k) {
+    wd[L] = k.wd.dense();
+    a[L] = k.a.dense();
+    return {};
+  }
+  template <int L, int C, class K>
+  auto down(const K& k) {
+    constexpr int o = link_info<S, C>::v;
+    return forward_step<T>(k, std::get<C - 1>(motions), v + o, rates_at<o>(vdot));
+  }
+};
+
+/// ω̇ and a of every link at (v, v̇) from the base's kinematics (the World's:
+/// base_kinematics, with −g; or at rest): link coordinates, dense.
+template <class S, class T, class Motions, class VD, class Base>
+void link_accelerations(const Motions& motions, const T* v, const VD& vdot, const Base& base,
+                        std::array<Vec3<T>, S::tree.n_links>& wd, std::array<Vec3<T>, S::tree.n_links>& a) {
+  acceleration_pass<S, T, Motions, VD> ctx{{}, motions, v, vdot, wd, a};
+  walk<S, 0>(ctx, base);
+}
+
+// ------------------------------------------------------------ frames on links
+
+/// A point fixed in a link at p (link coordinates), the link at pose L: its
+/// position, velocity and (from the link's ω̇ and a, link coordinates) its
+/// acceleration, world coordinates. Every frame's motion is its link's
+/// through these (recovery, energies, force elements, loop constraints).
+template <class T>
+FLANGE_INLINE Vec3<T> point_position(const link_pose<T>& L, const Vec3<T>& p) {
+  return L.r + L.R.transpose() * p;
+}
+template <class T>
+FLANGE_INLINE Vec3<T> point_velocity(const link_pose<T>& L, const Vec3<T>& p) {
+  return L.v + L.R.transpose() * L.w.cross(p);
+}
+template <class T>
+FLANGE_INLINE Vec3<T> point_acceleration(const link_pose<T>& L, const Vec3<T>& p, const Vec3<T>& wd, const Vec3<T>& a) {
+  return L.R.transpose() * (a + wd.cross(p) + L.w.cross(L.w.cross(p)));
 }
 
 }  // namespace flange::detail

@@ -117,7 +117,7 @@ inline void ldlt_backward_half(const MM& M, const std::array<T, N>& sqrt_inv_d, 
 /// Solves M·a = r for a symmetric positive-definite M by an unrolled LDLᵀ,
 /// reporting a failed pivot (ldlt_factor) instead of solving.
 /// Always inlined: for a scene's small systems the call would cost more than
-/// a 2×2 solve (the crane: 243 → 222 instructions per derivative).
+/// a 2×2 solve.
 template <int N, class T, class MM>
 [[gnu::always_inline]] inline pivot_report<T> solve_spd(MM& M, const T* r, T* a, const T* scale) {
   ldlt_pivots<N, T> f;

@@ -92,35 +92,6 @@ FLANGE_INLINE void for_links_reverse(F&& f) {
     (f(std::integral_constant<int, S::tree.n_links - 1 - L>{}), ...);
   }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
 }
-/// Scenes with more links than this compile the articulated-body algorithm's
-/// per-link steps as functions of their own (for_links_split): one function
-/// of a hundred unrolled links takes the optimiser superlinear time and
-/// gigabytes, while a call per link costs a few nanoseconds against the
-/// hundred or so its step takes. Smaller scenes stay one straight-line block.
-inline constexpr int split_links_above = 16;
-/// Whether scene S's passes call a function per link (or per subtree).
-template <class S>
-inline constexpr bool split_links = S::tree.n_links - 1 > split_links_above;
-
-template <int L, class F>
-[[gnu::noinline]] void link_step(F& f) {
-  f(std::integral_constant<int, L>{});
-}
-/// for_links (Reverse: for_links_reverse), each link's step its own function
-/// when the scene has more than split_links_above links.
-template <class S, bool Reverse = false, class F>
-FLANGE_INLINE void for_links_split(F&& f) {
-  if constexpr (!split_links<S>) {
-    if constexpr (Reverse) for_links_reverse<S>(f);
-    else for_links<S>(f);
-  } else {
-    [&]<int... L>(std::integer_sequence<int, L...>) FLANGE_INLINE_LAMBDA {
-      if constexpr (Reverse) (link_step<S::tree.n_links - 1 - L>(f), ...);
-      else (link_step<L + 1>(f), ...);
-    }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
-  }
-}
-
 /// f(integral_constant<C>) for each child C of link L.
 template <class S, int L, class F>
 FLANGE_INLINE void for_children(F&& f) {
@@ -267,8 +238,7 @@ FLANGE_INLINE auto link_motion_from(const S& scene, JM jm) {
 
 /// Link L's motion at q. The joint's motion first, in a statement of its
 /// own: its sine and cosine are a call, and what is loaded before a call and
-/// used after it is kept across it in memory (the arm with a run-time axis:
-/// 204 instructions against 192 when the rotation was passed beside it).
+/// used after it is kept across it in memory.
 template <class A, class T, int L, bool NeedRotation, class S>
 FLANGE_INLINE auto make_link_motion(const S& scene, const T* q) {
   auto jm = joint_motion_at<T, L, NeedRotation>(scene, q);
@@ -347,8 +317,7 @@ template <class A, class T, bool HasPositionPass, class S>
 FLANGE_INLINE auto link_motions(const S& scene, const T* q) {
   // Every joint's motion first (the sines and cosines, calls), then the
   // links' offsets and turns: loaded between two calls, they would be kept
-  // across the later ones in memory (chain6: 1785 instructions per
-  // derivative against 1820).
+  // across the later ones in memory.
   using AL = angle_links<S, HasPositionPass>;
   if constexpr (std::is_same_v<T, double> && AL::count >= batch_angles_from) {
     // The angles' cosines and sines in one call (math/sincos.hpp), then the

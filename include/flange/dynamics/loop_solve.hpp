@@ -318,7 +318,7 @@ closure project_onto_loops(const S& scene, double* q, double* v, const std::arra
           const auto& j = scene.template component<LI::joint>();
           j.qdot(q + LI::q, step.data() + LI::v, dq.data() + LI::q);
           for (int i = 0; i < LI::nq; ++i) q[LI::q + i] += dq[LI::q + i];
-          j.normalize(q + LI::q);
+          normalize_joint(j, q + LI::q);
         });
         const auto kk = loop_kinematics<S>(scene, q, zero.data());
         if (norm2(kk.phi) < norm2(k.phi)) {  // the merit is |Φ|₂: Newton's step is a descent direction for it

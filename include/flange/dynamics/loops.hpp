@@ -115,35 +115,6 @@ struct set_motion {
   Vec3<T> r, v, w, wd, a;
 };
 
-/// ω̇ and a of every link at v̇ = 0 without gravity (link coordinates): the
-/// Newton–Euler forward step (kinematics.hpp) with no rates for v̇.
-template <class S, class T, class Motions>
-struct bias_pass {
-  const Motions& motions;
-  const T* v;
-  std::array<Vec3<T>, S::tree.n_links>& wd;
-  std::array<Vec3<T>, S::tree.n_links>& a;
-
-  template <int L, class K>
-  nothing at(const K& k) {
-    wd[L] = k.wd.dense();
-    a[L] = k.a.dense();
-    return {};
-  }
-  template <int L, int C, class K>
-  auto down(const K& k) {
-    return forward_step<T>(k, std::get<C - 1>(motions), v + link_info<S, C>::v, no_rates{});
-  }
-  template <int, int>
-  nothing gather(nothing, nothing) {
-    return {};
-  }
-  template <int, class D>
-  nothing leave(const D&, nothing) {
-    return {};
-  }
-};
-
 /// The links' world poses and velocities, and their bias accelerations.
 template <class S, class T, class Motions>
 struct link_states {
@@ -153,8 +124,9 @@ struct link_states {
 template <class S, class T, class Motions>
 link_states<S, T, Motions> loop_link_states(const Motions& motions, const T* v) {
   link_states<S, T, Motions> r{link_poses<S, T>(motions, v), {}, {}};
-  bias_pass<S, T, Motions> ctx{motions, v, r.wd, r.a};
-  walk<S, 0>(ctx, link_kinematics{zero_vec<T>{}, zero_vec<T>{}, zero_vec<T>{}});
+  // ω̇ and a at v̇ = 0, without gravity: the bias accelerations.
+  link_accelerations<S, T>(motions, v, no_rates{}, link_kinematics{zero_vec<T>{}, zero_vec<T>{}, zero_vec<T>{}}, r.wd,
+                           r.a);
   return r;
 }
 
@@ -162,25 +134,13 @@ template <class S, int Set, class T, class LS>
 set_motion<T> motion_of_set(const S& scene, const LS& ls) {
   constexpr int L = S::tree.set_link[Set];
   const link_pose<T>& p = ls.pose[L];
-  const Vec3<T> o_l = scene.model().set_offset[Set].template cast<T>();
-  const Vec3<T> o = p.R.transpose() * o_l;
-  const Vec3<T> w = p.R.transpose() * p.w;
-  const Vec3<T> a_l = ls.a[L] + ls.wd[L].cross(o_l) + p.w.cross(p.w.cross(o_l));
+  const Vec3<T> o = scene.model().set_offset[Set].template cast<T>();
   return {Mat3<T>(scene.model().set_rotation[Set].template cast<T>() * p.R),
-          p.r + o,
-          p.v + w.cross(o),
-          w,
+          point_position(p, o),
+          point_velocity(p, o),
+          p.R.transpose() * p.w,
           p.R.transpose() * ls.wd[L],
-          p.R.transpose() * a_l};
-}
-
-/// Two unit vectors that complete the unit n to a right-handed basis (n, e1, e2).
-inline void complete_basis(const Vec3d& n, Vec3d& e1, Vec3d& e2) {
-  int k = 0;
-  for (int i = 1; i < 3; ++i)
-    if (std::abs(n[i]) < std::abs(n[k])) k = i;
-  e1 = n.cross(Vec3d::Unit(k)).normalized();
-  e2 = n.cross(e1);
+          point_acceleration(p, o, ls.wd[L], ls.a[L])};
 }
 
 /// One constraint row: Φ, Φ̇, the bias Φ̈ at v̇ = 0 (= Ġ·v), and the row's

@@ -102,12 +102,6 @@ FLANGE_INLINE void add_child(composite_inertia<A, T>& acc, const M& m, const C& 
   }
 }
 
-/// I_c·(ω, v) for a motion (ω, v): (I·ω + h × v, m·v + ω × h).
-template <class I_, class Mot>
-FLANGE_INLINE auto inertia_times(const I_& c, const Mot& s) {
-  return force_pair{c.I_o * s.ang + cross(c.h, s.lin), c.m * s.lin + cross(s.ang, c.h)};
-}
-
 /// The yardstick of the relative pivot test for a column: what its diagonal
 /// entry would be before projection (trace of the rotational inertia for a
 /// turning column, the mass for a sliding one).

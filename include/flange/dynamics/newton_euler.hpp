@@ -36,8 +36,8 @@ template <class M, class N, class F>
 FLANGE_INLINE auto carry_up(const M& m, const force_pair<N, F>& w) {
   // One expression, not a named f copied into the pair: from a named f GCC
   // kept the pair in memory in the mass-matrix pass, where only its
-  // projection on the parent's joint is used (the crane's derivative: 236
-  // against 228 instructions). The rotation is formed once (CSE).
+  // projection on the parent's joint is used. The rotation is formed once
+  // (CSE).
   return force_pair{rot_t(m.E(), w.n) + cross(m.p, rot_t(m.E(), w.f)), rot_t(m.E(), w.f)};
 }
 

@@ -161,38 +161,6 @@ template <fixed_string Component, fixed_string Variable, class S, class T>
   return sol.template internal_rate<Component, Variable>();
 }
 
-namespace detail {
-/// The accelerations pass of recovery: ω̇ and a (with −g) of every link at v̇, dense.
-template <class S, class T, class Motions>
-struct acceleration_pass {
-  const Motions& motions;
-  const T* v;
-  const T* vdot;
-  std::array<Vec3<T>, S::tree.n_links>& wd;
-  std::array<Vec3<T>, S::tree.n_links>& a;
-
-  template <int L, class K>
-  nothing at(const K& k) {
-    wd[L] = k.wd.dense();
-    a[L] = k.a.dense();
-    return {};
-  }
-  template <int L, int C, class K>
-  auto down(const K& k) {
-    constexpr int o = link_info<S, C>::v;
-    return forward_step<T>(k, std::get<C - 1>(motions), v + o, vdot + o);
-  }
-  template <int, int>
-  nothing gather(nothing, nothing) {
-    return {};
-  }
-  template <int, class D>
-  nothing leave(const D&, nothing) {
-    return {};
-  }
-};
-}  // namespace detail
-
 template <class S, class T = double, class State>
   requires(!std::is_integral_v<T>)
 [[nodiscard]] dae_solution<S, T> recover(const S& scene, const T& t, const State& x) {
@@ -217,11 +185,8 @@ template <class S, class T = double, class State>
   const auto motions = detail::link_motions<spatial_algebra, T, true>(scene, sol.q.data());
   const auto lk = detail::link_poses<S>(motions, sol.v.data());
   std::array<Vec3<T>, NL> wd, a;
-  {
-    detail::acceleration_pass<S, T, std::remove_cvref_t<decltype(motions)>> ctx{motions, sol.v.data(), sol.vdot.data(),
-                                                                               wd, a};
-    detail::walk<S, 0>(ctx, detail::base_kinematics<spatial_algebra, T>(scene));
-  }
+  detail::link_accelerations<S, T>(motions, sol.v.data(), sol.vdot.data(),
+                                   detail::base_kinematics<spatial_algebra, T>(scene), wd, a);
 
   // Frames: a frame sits at its set's constant pose in its link (its pose
   // and velocity as energy() has them, energy.hpp).
@@ -233,9 +198,8 @@ template <class S, class T = double, class State>
     const auto& L = lk[l];
     const Vec3<T> p = scene.model().set_offset[s].template cast<T>();
     const Mat3<T> Rs = scene.model().set_rotation[s].template cast<T>();
-    const Vec3<T> al = L.R.transpose() * a[l] + g;  // the link origin's acceleration, world coordinates
     k.wd = Rs * wd[l];
-    k.a = al + L.R.transpose() * (wd[l].cross(p) + L.w.cross(L.w.cross(p)));
+    k.a = detail::point_acceleration(L, p, wd[l], a[l]) + g;  // a carries −g
   }
 
   // Flows of bodies and force elements, from their own equations.
@@ -299,7 +263,7 @@ template <class S, class T = double, class State>
       using C = std::remove_cvref_t<decltype(c)>;
       if constexpr (C::kind == role::joint || C::kind == role::rigid) {
         const pose<T> x = [&]() FLANGE_INLINE_LAMBDA {
-          if constexpr (C::kind == role::joint) return c.relative_pose(sol.q.data() + tree.q_offset[e]);
+          if constexpr (C::kind == role::joint) return relative_pose_of(c, sol.q.data() + tree.q_offset[e]);
           else return c.template relative_pose<T>();
         }();
         if constexpr (carries_body<C>) {

@@ -125,12 +125,6 @@ class Cylindrical {
     qd[0] = v[0];
     qd[1] = v[1];
   }
-  template <class T>
-  void normalize(T*) const {}
-  template <class T>
-  [[nodiscard]] pose<T> relative_pose(const T* q) const {
-    return {axis_rotation<T>(n_.cast<T>(), q[1]), Vec3<T>(q[0] * n_.cast<T>())};
-  }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const {
     const Mat3<T> R = axis_rotation<T>(n_.cast<T>(), q[1]);

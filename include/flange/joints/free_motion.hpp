@@ -108,10 +108,6 @@ class FreeMotion {
   void normalize(T* q) const {
     quaternion::normalize(q + 3);
   }
-  template <class T>
-  [[nodiscard]] pose<T> relative_pose(const T* q) const {
-    return {quaternion::to_rotation(q + 3), Vec3<T>(q[0], q[1], q[2])};
-  }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const {
     const Mat3<T> R = quaternion::to_rotation(q + 3);

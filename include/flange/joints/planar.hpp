@@ -157,12 +157,6 @@ class Planar {
   void qdot(const T*, const T* v, T* qd) const {
     for (int i = 0; i < 3; ++i) qd[i] = v[i];
   }
-  template <class T>
-  void normalize(T*) const {}
-  template <class T>
-  [[nodiscard]] pose<T> relative_pose(const T* q) const {
-    return {axis_rotation<T>(n_.cast<T>(), q[2]), Vec3<T>(q[0] * ex_.cast<T>() + q[1] * ey_.cast<T>())};
-  }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const {
     const Mat3<T> R = axis_rotation<T>(n_.cast<T>(), q[2]);

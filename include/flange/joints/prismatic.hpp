@@ -172,18 +172,12 @@ class Prismatic {
   void qdot(const T*, const T* v, T* qd) const {
     qd[0] = v[0];
   }
-  template <class T>
-  void normalize(T*) const {}
   /// As a cut joint: s and ṡ from frame_b's origin p in frame_a and its
   /// rate (frame_a coordinates), the inverse of relative_pose on a closed loop.
   template <class T>
   void cut_state(const Mat3<T>&, const Vec3<T>& p, const Vec3<T>&, const Vec3<T>& pd, T* q, T* v) const {
     q[0] = n_.cast<T>().dot(p);
     v[0] = n_.cast<T>().dot(pd);
-  }
-  template <class T>
-  [[nodiscard]] pose<T> relative_pose(const T* q) const {
-    return {Mat3<T>::Identity(), q[0] * n_.cast<T>()};
   }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const {

@@ -258,12 +258,6 @@ class Revolute {
   void qdot(const T*, const T* v, T* qd) const {
     qd[0] = v[0];
   }
-  template <class T>
-  void normalize(T*) const {}
-  template <class T>
-  [[nodiscard]] pose<T> relative_pose(const T* q) const {
-    return {axis_rotation<T>(n_.cast<T>(), q[0]), Vec3<T>::Zero()};
-  }
   /// As a cut joint: φ and φ̇ from frame_b's pose in frame_a (R rotates
   /// frame_a coordinates into frame_b's) and the relative angular velocity
   /// w (frame_a coordinates), the inverse of relative_pose on a closed loop.
@@ -271,8 +265,7 @@ class Revolute {
   void cut_state(const Mat3<T>& R, const Vec3<T>&, const Vec3<T>& w, const Vec3<T>&, T* q, T* v) const {
     using std::atan2;
     Vec3d e1, e2;
-    e1 = n_.cross(std::abs(n_[0]) < 0.9 ? Vec3d::UnitX() : Vec3d::UnitY()).normalized();
-    e2 = n_.cross(e1);
+    complete_basis(n_, e1, e2);
     const Vec3<T> Re1 = R * e1.cast<T>();
     q[0] = atan2(-e2.cast<T>().dot(Re1), e1.cast<T>().dot(Re1));
     v[0] = n_.cast<T>().dot(w);

@@ -108,10 +108,6 @@ class Spherical {
   void normalize(T* q) const {
     quaternion::normalize(q);
   }
-  template <class T>
-  [[nodiscard]] pose<T> relative_pose(const T* q) const {
-    return {quaternion::to_rotation(q), Vec3<T>::Zero()};
-  }
   /// As a cut joint: the quaternion of frame_b's orientation in frame_a
   /// and the relative angular velocity in frame_b coordinates.
   template <class T>

@@ -166,12 +166,6 @@ class Universal {
     qd[0] = v[0];
     qd[1] = v[1];
   }
-  template <class T>
-  void normalize(T*) const {}
-  template <class T>
-  [[nodiscard]] pose<T> relative_pose(const T* q) const {
-    return {Mat3<T>(axis_rotation<T>(nb_.cast<T>(), q[1]) * axis_rotation<T>(na_.cast<T>(), q[0])), Vec3<T>::Zero()};
-  }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const {
     const Mat3<T> Rb = axis_rotation<T>(nb_.cast<T>(), q[1]);

@@ -74,8 +74,7 @@ FLANGE_INLINE Mat3<T> rotated_back(const E& R, const Mat3<T>& X) {
 /// axis Z keeps them zero and computes only Y_jj, Y_kk, Y_jk (an articulated
 /// inertia's Θ behind a revolute joint, articulated_body.hpp); a rotation
 /// about another axis skips them as factors (the second factor R_x(α) of an
-/// axis frame's E: 16-link spatial chain, 1252 → 1234 instructions a link,
-/// 1094 → 1052 ns).
+/// axis frame's E).
 template <class T, int Z = -1, class E>
 FLANGE_INLINE Mat3<T> rotated_back_sym(const E& R, const Mat3<T>& X) {
   if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) {
@@ -122,9 +121,9 @@ FLANGE_INLINE Mat3<T> rotated_back_sym(const E& R, const Mat3<T>& X) {
 /// The same for a general E applied to X's columns and then to the rows of
 /// the result (54 products, no symmetry used). The products are the same as
 /// rotated_back_sym's; GCC schedules the two differently, and which is faster
-/// depends on the pass around them: this one inside the mass matrix's pass
-/// (4-link spatial chain, Newton–Euler: 250 against 300 ns), the other inside
-/// the articulated body (8 links: 0.89 against 1.36 µs).
+/// depends on the pass around them: this one inside the mass matrix's pass,
+/// the other inside the articulated body (docs/performance.md, "Why the hot
+/// path is written as it is").
 template <class T, class E>
 FLANGE_INLINE Mat3<T> rotated_back_sym_by_columns(const E& R, const Mat3<T>& X) {
   if constexpr (std::is_same_v<std::remove_cvref_t<E>, Mat3<T>>) {

@@ -17,6 +17,19 @@
 
 namespace flange {
 
+/// Two unit vectors that complete the unit n to a right-handed orthonormal
+/// basis (n, e1, e2): e1 normal to n and to the coordinate axis n is least
+/// along (never near n), e2 = n × e1. The one rule flange uses wherever it
+/// needs a direction normal to an axis (cut joints, loop constraints, axis
+/// frames).
+inline void complete_basis(const Vec3<double>& n, Vec3<double>& e1, Vec3<double>& e2) {
+  int k = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(n[i]) < std::abs(n[k])) k = i;
+  e1 = n.cross(Vec3<double>::Unit(k)).normalized();
+  e2 = n.cross(e1);
+}
+
 /// ã, the matrix with ã·b = a × b.
 template <class T>
 [[nodiscard]] FLANGE_INLINE Mat3<T> tilde(const Vec3<T>& a) {

@@ -1,9 +1,8 @@
 // The cosine and sine of an angle, and of many angles in one call.
 //
 // A joint that turns by an angle needs cos φ and sin φ at every evaluation.
-// One at a time they are a libm call each, about 9 ns on x86-64 (glibc's
-// sincos), and on a spatial chain of 8 links they were 13 % of the
-// derivative. The links of a scene are known at compile time, so
+// One at a time they are a libm call each (glibc's sincos), a large share
+// of a spatial chain's derivative. The links of a scene are known at compile time, so
 // dynamics/links.hpp gathers every link's angle into one array first and
 // asks for all the cosines and sines at once: cos_sin_batch below. On x86-64
 // with glibc that is glibc's own vector math library (libmvec, linked with
@@ -11,12 +10,11 @@
 // once), 2 per call with the SSE2 every x86-64 has. Elsewhere it is std::cos
 // and std::sin, one angle at a time.
 //
-// Measured on the CI machine (AMD EPYC, 8 angles gathered from a state at
-// every call, medians of 7): glibc's sincos one at a time 65.7 ns, one call
-// with SSE2 31.1 ns, with AVX2 13.4 ns (tools/probes/sincos_batch.cpp).
-// libmvec's error bound is 4 ulp (tests/sincos_test.cpp: at most 3.2 ulp
-// against long double for angles up to 10⁶; glibc's sincos 0.52):
-// a rotation off by a few 10⁻¹⁶, far below any integrator's tolerance.
+// What one call saves is measured by tools/probes/sincos_batch.cpp
+// (docs/performance.md, "Why the hot path is written as it is").
+// libmvec's error bound is 4 ulp (tests/sincos_test.cpp checks it against
+// long double for angles up to 10⁶): a rotation off by a few 10⁻¹⁶, far
+// below any integrator's tolerance.
 //
 // Define FLANGE_NO_LIBMVEC to keep the one-at-a-time calls everywhere.
 #pragma once
@@ -67,7 +65,7 @@ inline const bool cpu_has_avx2 = [] {
 
 // The angles reach the vector functions in registers, two per SSE register:
 // written to memory one by one and read back as one vector, they would stall
-// the load (a store cannot forward to a wider load), 12 ns for 8 angles.
+// the load (a store cannot forward to a wider load).
 
 /// cos and sin of the four angles (lo, hi) into c[0 … 4), s[0 … 4).
 [[gnu::target("avx2")]] inline void cos_sin_avx2(__m128d lo, __m128d hi, double* c, double* s) {

@@ -1,8 +1,8 @@
 // 3 × 3 matrix products written out coefficient by coefficient, always
 // inlined. Inside a scene's unrolled derivative, which is one large function,
 // GCC declines to inline Eigen's product kernels: each 3 × 3 product became a
-// call with its operands in memory (a planar articulated-body step spent
-// 170 instructions per link in one such call for 27 multiplications). These
+// call with its operands in memory, several times the 27 multiplications'
+// own cost. These
 // are for the algorithms' inner steps; elsewhere Eigen's own are fine.
 #pragma once
 #include "flange/detail/inline.hpp"

@@ -41,14 +41,31 @@
 
 namespace flange::models {
 
+/// Every joint kind, in the order random trees draw them (random_tree_shape)
+/// and tests/joint_laws_test.cpp checks them. A new joint is one entry here
+/// and one case in tree_joint below. A tree with every_joint draws the
+/// first seven kinds as they always were and a later kind from a stream of
+/// its own, so the trees of a seed stay what they were when a kind is added.
+enum class joint_kind { revolute, prismatic, spherical, universal, cylindrical, planar, free_motion };
+inline constexpr int n_joint_kinds = 7;
+/// f(integral_constant<joint_kind, K>) for every kind K, in the list's order.
+template <class F>
+constexpr void for_each_joint_kind(F&& f) {
+  [&]<int... K>(std::integer_sequence<int, K...>) {
+    (f(std::integral_constant<joint_kind, joint_kind(K)>{}), ...);
+  }(std::make_integer_sequence<int, n_joint_kinds>{});
+}
+/// Whether a joint of kind k may be connected frame_b toward the World in a
+/// random tree (Planar and FreeMotion are drawn with frame_a toward it).
+constexpr bool drawn_reversible(joint_kind k) { return k != joint_kind::planar && k != joint_kind::free_motion; }
+
 struct tree_shape {
   static constexpr int max_joints = 12;
   int n = 0;
   bool planar = false;
   std::array<int, max_joints> parent{};       ///< −1: the World
   std::array<bool, max_joints> prismatic{};
-  std::array<int, max_joints> kind{};         ///< 0 Revolute or Prismatic (as prismatic says), 2 Spherical,
-                                              ///< 3 Universal, 4 Cylindrical, 5 Planar, 6 FreeMotion
+  std::array<joint_kind, max_joints> kind{};  ///< revolute: Revolute or Prismatic, as prismatic says
   std::array<int, max_joints> axis{};         ///< 0, 1, 2: axis::x, y, z as a type; 3: axis::any
   std::array<int, max_joints> law{};          ///< 0 none, 1 spring-damper, 2 friction
   std::array<bool, max_joints> offset{};      ///< a FixedTranslation "o<i>" before the joint
@@ -86,6 +103,7 @@ constexpr tree_shape random_tree_shape(unsigned seed, int n, bool planar, bool e
   t.n = n;
   t.planar = planar;
   detail::lcg r{seed * 2654435761ULL + 12345};
+  detail::lcg later{seed * 40503ULL + 977};  // joint kinds beyond the first seven (joint_kind)
   std::array<int, tree_shape::max_joints + 1> children{};  // [0]: the World
   for (int i = 0; i < n; ++i) {
     int p = -1;
@@ -106,12 +124,18 @@ constexpr tree_shape random_tree_shape(unsigned seed, int n, bool planar, bool e
     t.line_law[i] = r.below(3);
     t.load[i] = r.below(3) == 0 ? 1 + r.below(4) : 0;
     if (every_joint) {
-      const int k = planar ? (r.below(3) == 0 ? 5 : 0) : r.below(7);
-      t.kind[i] = k == 1 ? 0 : k;
-      if (t.kind[i] != 0) {
+      // In a plane: Planar one time in three, else Revolute or Prismatic. In
+      // space the first seven kinds as they were always drawn, and a kind
+      // added to the list later from a stream of its own.
+      auto k = planar ? (r.below(3) == 0 ? joint_kind::planar : joint_kind::revolute) : joint_kind(r.below(7));
+      if constexpr (n_joint_kinds > 7) {
+        if (!planar && later.below(n_joint_kinds) >= 7) k = joint_kind(7 + later.below(n_joint_kinds - 7));
+      }
+      t.kind[i] = k == joint_kind::prismatic ? joint_kind::revolute : k;  // as t.prismatic says
+      if (t.kind[i] != joint_kind::revolute) {
         t.prismatic[i] = false;
         if (t.body[i] == 3) t.body[i] = 0;  // a point mass needs a joint that does not turn
-        if (t.kind[i] == 5 || t.kind[i] == 6) t.reversed[i] = false;  // connected frame_a toward the World
+        if (!drawn_reversible(t.kind[i])) t.reversed[i] = false;
         if (planar) t.axis[i] = 2;
       }
     }
@@ -175,16 +199,16 @@ auto tree_joint(const tree_params<N>& p) {
   using A = tree_axis<Sh.axis[I]>;
   using Law = tree_law<Sh.law[I]>;
   constexpr auto name = indexed_name<"j", I>();
-  if constexpr (Sh.kind[I] == 2) {
+  if constexpr (Sh.kind[I] == joint_kind::spherical) {
     return Spherical<name>{};
-  } else if constexpr (Sh.kind[I] == 3) {
+  } else if constexpr (Sh.kind[I] == joint_kind::universal) {
     return Universal<name, A, axis::any>({.n_a = p.axis[I], .n_b = p.axis2[I]});
-  } else if constexpr (Sh.kind[I] == 4) {
+  } else if constexpr (Sh.kind[I] == joint_kind::cylindrical) {
     return Cylindrical<name, A>({.n = p.axis[I]});
-  } else if constexpr (Sh.kind[I] == 5) {
+  } else if constexpr (Sh.kind[I] == joint_kind::planar) {
     if constexpr (Sh.planar) return Planar<name, axis::z, axis::x>{};
     else return Planar<name>({.n = p.axis[I], .n_x = p.axis2[I]});
-  } else if constexpr (Sh.kind[I] == 6) {
+  } else if constexpr (Sh.kind[I] == joint_kind::free_motion) {
     return FreeMotion<name>{};
   } else if constexpr (Sh.prismatic[I]) {
     using J = Prismatic<name, A, double, Law>;

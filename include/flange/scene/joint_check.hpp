@@ -40,9 +40,12 @@ constexpr bool check_joint() {
   else if constexpr (!req::reversible<C>) return lacks<C, "static constexpr bool reversible">();
   else if constexpr (!req::neutral<C>) return lacks<C, "neutral()">();
   else if constexpr (!req::motion<C>) return lacks<C, "motion<T, Dir, NeedRotation>(q)">();
+  else if constexpr (!req::motion_pose<C>) return lacks<C, "motion(q).E and .p">();
+  else if constexpr (!req::motion_rates<C>) return lacks<C, "motion(q).w(v) and .pd(v)">();
+  else if constexpr (!req::motion_biases<C>) return lacks<C, "motion(q).w_bias(v) and .pd_bias(v)">();
+  else if constexpr (!req::motion_project<C>) return lacks<C, "motion(q).project(n, f)">();
+  else if constexpr (!req::motion_columns<C>) return lacks<C, "motion(q).col<k>()">();
   else if constexpr (!req::qdot<C>) return lacks<C, "qdot(q, v, qd)">();
-  else if constexpr (!req::normalize<C>) return lacks<C, "normalize(q)">();
-  else if constexpr (!req::relative_pose<C>) return lacks<C, "relative_pose(q)">();
   else if constexpr (!req::planar_info<C>) return lacks<C, "planar_normal(), moves_in_plane(k)">();
   else if constexpr (!req::internals_io<C>) return lacks<C, "write_internals(q, v, set), read_state(get, q, v)">();
   else return true;

@@ -85,7 +85,7 @@ drift_report invariant_drift(const S& scene, const State& x) {
     if constexpr (normalizes<typename S::template component_type<LI::joint>>()) {
       std::array<double, LI::nq> q;
       for (int i = 0; i < LI::nq; ++i) q[i] = static_cast<double>(x[LI::q + i]);
-      scene.template component<LI::joint>().normalize(q.data());
+      normalize_joint(scene.template component<LI::joint>(), q.data());
       for (int i = 0; i < LI::nq; ++i) {
         const double e = std::abs(q[i] - static_cast<double>(x[LI::q + i]));
         if (!(e <= d.value)) d = {e, LI::joint, -1};

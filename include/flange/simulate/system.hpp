@@ -128,7 +128,7 @@ closure project_state(const S& scene, State& x) {
   S::require_state_size(x);
   detail::for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
     using LI = detail::link_info<S, decltype(l)::value>;
-    scene.template component<LI::joint>().normalize(x.data() + LI::q);
+    normalize_joint(scene.template component<LI::joint>(), x.data() + LI::q);
   });
   if constexpr (detail::has_loops<S>) {
     std::array<bool, S::n_v> free;
