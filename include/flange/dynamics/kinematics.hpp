@@ -46,7 +46,7 @@ FLANGE_INLINE auto rates_at(const V& v) {
 
 /// The World's kinematics: at rest, accelerating by −g (or not at all).
 template <class A, class T, class S>
-auto base_kinematics(const S& scene) {
+FLANGE_INLINE auto base_kinematics(const S& scene) {
   if constexpr (S::has_gravity) {
     return link_kinematics{zero_vec<T>{}, zero_vec<T>{}, linear<A, T>(Vec3<T>(scene.model().minus_g.template cast<T>()))};
   } else {

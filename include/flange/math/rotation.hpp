@@ -18,15 +18,13 @@
 namespace flange {
 
 /// Two unit vectors that complete the unit n to a right-handed orthonormal
-/// basis (n, e1, e2): e1 normal to n and to the coordinate axis n is least
-/// along (never near n), e2 = n × e1. The one rule flange uses wherever it
-/// needs a direction normal to an axis (cut joints, loop constraints, axis
-/// frames).
+/// basis (n, e1, e2): e1 is e_x (e_y where n is within about 25° of e_x)
+/// with its part along n taken off, e2 = n × e1. The one rule flange uses
+/// wherever it needs a direction normal to an axis (cut joints, loop
+/// constraints, axis frames).
 inline void complete_basis(const Vec3<double>& n, Vec3<double>& e1, Vec3<double>& e2) {
-  int k = 0;
-  for (int i = 1; i < 3; ++i)
-    if (std::abs(n[i]) < std::abs(n[k])) k = i;
-  e1 = n.cross(Vec3<double>::Unit(k)).normalized();
+  const Vec3<double> a = std::abs(n.x()) < 0.9 ? Vec3<double>::UnitX() : Vec3<double>::UnitY();
+  e1 = (a - a.dot(n) * n).normalized();
   e2 = n.cross(e1);
 }
 
