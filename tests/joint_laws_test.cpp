@@ -3,8 +3,10 @@
 // the biases the algorithms use), its relative pose (cut forces, output),
 // its internals (the DAE's variables) and, where it can close a loop, its
 // cut state. These must be one kinematics:
-//   * relative_pose(q) is the motion<+1>(q) densified, and motion<−1>(q) is
-//     its inverse (E⁻ = E⁺ᵀ, p⁻ = −E⁺·p⁺);
+//   * a relative_pose(q) the joint states is the motion<+1>(q) densified
+//     (flange's joints state none and take that default; RevoluteOwnPose
+//     below states one, as a user's joint may), and motion<−1>(q) is its
+//     inverse (E⁻ = E⁺ᵀ, p⁻ = −E⁺·p⁺);
 //   * the motion subspace is the derivative of the pose along q̇ = qdot(q, v):
 //     ω = m.w(v) from Ṙ = −ω̃·R, ṗ = m.pd(v), against central differences
 //     and against dual numbers;
@@ -110,6 +112,16 @@ struct internals_store {
   }
 };
 
+/// A Revolute that states its own relative_pose (frame_b turned by +φ about
+/// n), as a user's joint may: the laws hold it to the motion.
+struct RevoluteOwnPose : Revolute<"own", axis::any> {
+  using Revolute::Revolute;
+  template <class T>
+  pose<T> relative_pose(const T* q) const {
+    return {axis_rotation<T>(n().cast<T>(), q[0]), Vec3<T>::Zero()};
+  }
+};
+
 template <class J>
 void check_laws(const J& j, std::uint32_t seed) {
   constexpr int nq = J::nq, nv = J::nv;
@@ -122,10 +134,14 @@ void check_laws(const J& j, std::uint32_t seed) {
     INFO("trial " << trial);
 
     // relative_pose is the motion; the reverse motion is its inverse.
+    // (A joint without its own relative_pose takes the motion's, which
+    // relative_pose_of densifies: flange's joints do; a user's may not.)
     const auto fwd = values<+1>(j, q.data(), v.data());
     const pose<double> x = relative_pose_of(j, q.data());
-    CHECK((x.R - fwd.E).norm() < 1e-14);
-    CHECK((x.p - fwd.p).norm() < 1e-14);
+    if constexpr (requires { j.relative_pose(q.data()); }) {
+      CHECK((x.R - fwd.E).norm() < 1e-14);
+      CHECK((x.p - fwd.p).norm() < 1e-14);
+    }
     CHECK((fwd.E * fwd.E.transpose() - Mat3d::Identity()).norm() < 1e-14);
     if constexpr (J::reversible) {
       const auto rev = values<-1>(j, q.data(), v.data());
@@ -257,6 +273,7 @@ TEST_CASE("every joint kind keeps its own laws: pose, motion, rates, internals, 
       check_laws(Revolute<"rz", axis::z>{}, seed++);
       check_laws(Revolute<"rx", axis::x>{}, seed++);
       check_laws(Revolute<"rn">({.n = n}), seed++);
+      check_laws(RevoluteOwnPose({.n = n}), seed++);
     } else if constexpr (K == models::joint_kind::prismatic) {
       check_laws(Prismatic<"pz", axis::z>({}), seed++);
       check_laws(Prismatic<"pn">({.n = n}), seed++);
@@ -277,5 +294,5 @@ TEST_CASE("every joint kind keeps its own laws: pose, motion, rates, internals, 
       static_assert(K != K, "joint_laws_test: a joint kind of models::every_joint_kind has no case here; add one");
     }
   });
-  CHECK(seed == 14);  // every joint above was checked
+  CHECK(seed == 15);  // every joint above was checked
 }

@@ -339,8 +339,7 @@ template <class A, class S, class T, class Seq = std::make_integer_sequence<int,
 struct aba_records;
 template <class A, class S, class T, int... L>
 struct aba_records<A, S, T, std::integer_sequence<int, L...>> {
-  static constexpr bool early = aba_down_early(A::planar, tree_depth<S>(), S::tree.n_links - 1);
-  using type = std::tuple<aba_link<A, T, link_info<S, L + 1>::nv, early>...>;
+  using type = std::tuple<aba_link<A, T, link_info<S, L + 1>::nv, aba_early<A, S>>...>;
 };
 
 /// What the plan (schedule.hpp) asks of the articulated body for scene S:

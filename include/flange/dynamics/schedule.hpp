@@ -66,6 +66,11 @@ constexpr int tree_depth() {
   return most;
 }
 
+/// Whether scene S's articulated body takes the early step down (costs.hpp,
+/// aba_down_early): the plan's choice, which the links' records are shaped by.
+template <class A, class S>
+inline constexpr bool aba_early = aba_down_early(A::planar, tree_depth<S>(), S::tree.n_links - 1);
+
 /// A pass's units: unit u is the links first[u] … first[u] + len[u] − 1.
 template <int NL>
 struct unit_table {
@@ -104,7 +109,7 @@ struct aba_plan {
   /// is a few dozen instructions, less than its call costs.
   static constexpr bool shared_start = shared && !A::planar;
   static constexpr int block = !shared ? 1 : A::planar ? aba_block_links.planar : aba_block_links.spatial;
-  static constexpr bool early = aba_down_early(A::planar, tree_depth<S>(), NL - 1);
+  static constexpr bool early = aba_early<A, S>;
   static constexpr unit_table<NL> units = make_units<NL>(Kinds::template joins<block>(), block);
 };
 
