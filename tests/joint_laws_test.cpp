@@ -212,7 +212,7 @@ void check_laws(const J& j, std::uint32_t seed) {
     j.write_internals(q.data(), v.data(), store.setter());
     std::array<double, nq> q2{};
     std::array<double, nv> v2{};
-    j.read_state(store.getter(), q2.data(), v2.data());
+    read_joint_state(j, store.getter(), q2.data(), v2.data());
     const auto same_pose = [&](const std::array<double, nq>& a) {
       const pose<double> y = relative_pose_of(j, a.data());
       return (y.R - x.R).norm() < 1e-13 && (y.p - x.p).norm() < 1e-13;

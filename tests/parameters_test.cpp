@@ -177,6 +177,38 @@ TEST_CASE("the 3-D joints refuse bad axes, orientations and quaternions, naming 
   CHECK_NOTHROW(checked(top, b)(x, dx, 0.0));
 }
 
+TEST_CASE("a state set by hand is checked, through the joints' own state or the plain default") {
+  // Revolute, Universal and FreeMotion: the plain default {.q, .v} (one
+  // coordinate), {.q = {…}, .v = {…}} (two), and a joint's own state type.
+  const auto s = scene(World<"world">{}, Revolute<"hinge", axis::z>{}, Body<"a">({.m = 1.0}),
+                       Universal<"cardan">({.n_a = {1, 0, 0}, .n_b = {0, 1, 0}}), Body<"b">({.m = 1.0}),
+                       FreeMotion<"free">{}, Body<"c">({.m = 1.0, .J = Mat3d::Identity()}),
+                       connect<"world.frame_b", "hinge.frame_a">, connect<"hinge.frame_b", "a.frame_a">,
+                       connect<"a.frame_a", "cardan.frame_a">, connect<"cardan.frame_b", "b.frame_a">,
+                       connect<"world.frame_b", "free.frame_a">, connect<"free.frame_b", "c.frame_a">);
+  static_assert(plain_joint<Revolute<"hinge", axis::z>>() && plain_joint<Universal<"u">>());
+  static_assert(!plain_joint<FreeMotion<"free">>() && !plain_joint<Spherical<"s">>());
+  const auto x = initial_state<"hinge", "cardan", "free">(s, {.q = 0.3, .v = -1}, {.q = {0.1, 0.2}, .v = {3, 4}},
+                                                       {.r = {1, 2, 3}, .v = {}, .R = {}, .w = {}});
+  CHECK(x[0] == 0.3);
+  CHECK((x[1] == 0.1 && x[2] == 0.2));
+  CHECK((x[3] == 1 && x[4] == 2 && x[5] == 3 && x[9] == 1));  // FreeMotion: r, then the unit quaternion
+  CHECK(x[10] == -1);
+  CHECK((x[11] == 3 && x[12] == 4));
+  CHECK_THROWS_WITH(initial_state<"hinge">(s, {.q = not_a_number}),
+                    Contains("Revolute \"hinge\"") && Contains("initial coordinate") && Contains("nan"));
+  CHECK_THROWS_WITH(initial_state<"cardan">(s, {.v = {0, not_a_number}}),
+                    Contains("Universal \"cardan\"") && Contains("initial rate 1"));
+  // A FreeMotion's quaternion (q[3..6]) off unit norm: the same check as a Spherical's.
+  auto y = x;
+  y[9] = 1.25;
+  budget b;
+  decltype(s)::state_type dy;
+  CHECK_THROWS_WITH(checked(s, b)(y, dy, 0.0), Contains("FreeMotion \"free\"") && Contains("squared norm 1.5625"));
+  normalize(s, y);
+  CHECK(y[9] == 1.0);
+}
+
 TEST_CASE("a diverged (NaN) state is reported as such, not as a singular mass matrix") {
   // The crane's mass matrix depends on the rope angle: a NaN angle makes
   // every pivot NaN, and the message names the state, not a joint.

@@ -1,7 +1,8 @@
 // A user's own joint type: a hinge about frame_a's z axis, written against
 // the joint concept (core/joint.hpp, docs/architecture.md "Write your own
-// joint"). The ok half has every member it must have (normalize and
-// relative_pose are optional: the concept's defaults) and simulates; the ko
+// joint"). The ok half has every member it must have and simulates (it is
+// plain: read_state and its state {.q, .v} are the concept's defaults, as
+// are normalize, relative_pose and, from motion_base, pd and the biases); the ko
 // half misses qdot, or with FLANGE_KO_PROJECT its motion's project
 // (joint_motion_lacks_member.cpp), and is refused at the scene, naming the
 // joint and the member.
@@ -30,7 +31,7 @@ struct Hinge {
   }
   // Its motion: a rotation about z, ω = φ̇·e_z, torque projected on z.
   template <class T>
-  struct motion_t {
+  struct motion_t : motion_base<T> {
     coordinate_rotation<T, 2> E;
     zero_vec<T> p{};
     template <class V>
@@ -38,12 +39,6 @@ struct Hinge {
       if constexpr (is_no_rates<V>) return zero_vec<T>{};
       else return axial<T, 2>(v[0]);
     }
-    template <class V>
-    zero_vec<T> pd(const V&) const { return {}; }
-    template <class V>
-    zero_vec<T> w_bias(const V&) const { return {}; }
-    template <class V>
-    zero_vec<T> pd_bias(const V&) const { return {}; }
 #if !(defined(FLANGE_KO) && defined(FLANGE_KO_PROJECT))
     template <class N, class F>
     std::array<T, 1> project(const N& n, const F&) const { return {n.template get<2>()}; }
@@ -54,7 +49,9 @@ struct Hinge {
   template <class T, int, bool>
   motion_t<T> motion(const T* q) const {
     using std::cos, std::sin;
-    return {{cos(q[0]), sin(q[0])}};
+    motion_t<T> m;
+    m.E = {cos(q[0]), sin(q[0])};
+    return m;
   }
 #if !defined(FLANGE_KO) || defined(FLANGE_KO_PROJECT)
   template <class T>
@@ -63,15 +60,14 @@ struct Hinge {
   static std::array<double, 1> neutral() { return {0.0}; }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const { set(0, q[0], v[0]); }
-  template <class T, class Get>
-  void read_state(Get&& get, T* q, T* v) const { q[0] = *get(0, false), v[0] = *get(0, true); }
 };
 
 int main() {
   auto s = scene(World<"world">{}, Hinge{}, FixedTranslation<"rod">({.d = {0.5, 0, 0}}), Body<"b">({.m = 1.0}),
                  connect<"world.frame_b", "hinge.frame_a">, connect<"hinge.frame_b", "rod.frame_a">,
                  connect<"rod.frame_b", "b.frame_a">);
-  std::array<double, 2> x{0.3, 0}, dx;
+  auto x = initial_state<"hinge">(s, {.q = 0.3});
+  decltype(x) dx;
   s(x, dx, 0.0);
   return dx[1] < 0 ? 0 : 1;
 }

@@ -14,21 +14,36 @@
 //                                     frame_a faces the World, −1 otherwise
 //   qdot(q, v, qd)                    q̇ from v
 //   write_internals(q, v, set)        its DAE internals (φ, R_rel, …) and their rates
-//   read_state(get, q, v)             q and v back from those internals (the residual's inputs)
+//   read_state(get, q, v)             q and v back from those internals (the
+//                                     residual's inputs); a plain joint
+//                                     (plain_joint below) may leave it out
 //   planar_normal(), moves_in_plane(K)  what planar arithmetic needs to know
 //
-// and optionally normalize(q), which keeps q valid (a quaternion's norm;
-// without it q is always valid: normalize_joint below), relative_pose(q),
-// frame_b's pose in frame_a (without it, the motion<+1>(q) densified:
-// relative_pose_of below; tests/joint_laws_test.cpp holds every joint's to
-// its motion), generalized_force(t, x, tau) (inputs and axis laws on its
-// coordinates), elastic_energy(q), fixed_subspace (true when m.col<k>() is
-// the same at every q, either way round: a scene whose joints all hang from
-// the World then folds its constant mass matrix, dynamics/model.hpp), and as_cut: what it leaves free when it
-// closes a loop (cut_freedom below; a joint without it cannot be cut), with
-// cut_state(R, p, w, ṗ, q, v): its coordinates and rates from its frames'
-// relative pose and motion, for recovering a cut joint's internals. scene/joint_check.hpp turns a missing
-// member into one static_assert naming the joint and the member.
+// and optionally:
+//   state, write_state(s, q, v)  the state set by hand (set_joint); a plain
+//                                joint's default is {.q, .v}
+//   quaternion_at = k            a unit quaternion in q from q[k]: it is kept
+//                                at unit norm and checked (normalize_joint,
+//                                check_joint_coordinates below); normalize(q)
+//                                and check_coordinates(q) for invariants of
+//                                another kind (without any, q is always valid)
+//   relative_pose(q)             frame_b's pose in frame_a; without it, the
+//                                motion<+1>(q) densified (relative_pose_of);
+//                                tests/joint_laws_test.cpp holds a joint's
+//                                own to its motion
+//   generalized_force(t, x, q, v, tau)  inputs and axis laws on its coordinates
+//   elastic_energy(q)            the potential energy of its axis law
+//   fixed_subspace               true when m.col<k>() is the same at every q,
+//                                either way round: a scene whose joints all
+//                                hang from the World folds its constant mass
+//                                matrix (dynamics/model.hpp)
+//   as_cut, cut_state(R, p, w, ṗ, q, v)  what it leaves free when it closes a
+//                                loop (cut_freedom below; without it, it
+//                                cannot be cut), and its coordinates and rates
+//                                from its frames' relative pose and motion
+//
+// scene/joint_check.hpp turns a missing member into one static_assert naming
+// the joint and the member.
 //
 // A joint whose rotation turns by one angle φ = q[k] may declare
 // angle_coordinate = k and motion<T, Dir>(q, cos_sin<T>{cos φ, sin φ}): its
@@ -61,18 +76,25 @@
 //   m.col<k>()       column k of the motion subspace: {ang, lin} in child
 //                    coordinates (lin = E·S_v·e_k)
 //
+// A motion object derived from motion_base<T> (below) states only what is
+// not zero: pd, w_bias and pd_bias default to zero.
+//
 // v is a pointer to the joint's nv rates, or no_rates{} when the rates are
 // known to be zero (their terms are then never generated). Every quantity has
 // a type from math/sparse.hpp, so what a joint's type rules out (a rotation
 // about a coordinate axis, no translation) costs nothing in the algorithms.
 #pragma once
 #include <array>
+#include <cmath>
 #include <concepts>
+#include <string>
 #include <type_traits>
 #include <utility>
 
 #include "flange/core/component.hpp"
 #include "flange/core/frame_kinematics.hpp"
+#include "flange/detail/inline.hpp"
+#include "flange/math/quaternion.hpp"
 #include "flange/math/sincos.hpp"
 #include "flange/math/sparse.hpp"
 
@@ -100,6 +122,28 @@ template <class A, class L>
 motion_pair(A, L) -> motion_pair<A, L>;
 template <class N, class F>
 force_pair(N, F) -> force_pair<N, F>;
+
+/// What a motion object (above) states by default: a joint derives its
+/// motion object from motion_base<T> and writes only what is not zero. By
+/// default the child origin does not move in frame_a (pd = 0) and the motion
+/// subspace does not change with the motion (both biases 0): a Revolute's
+/// motion states E, w, project and col only. A member of the joint's own
+/// hides the default of the same name.
+template <class T>
+struct motion_base {
+  template <class V>
+  FLANGE_INLINE zero_vec<T> pd(const V&) const {
+    return {};
+  }
+  template <class V>
+  FLANGE_INLINE zero_vec<T> w_bias(const V&) const {
+    return {};
+  }
+  template <class V>
+  FLANGE_INLINE zero_vec<T> pd_bias(const V&) const {
+    return {};
+  }
+};
 
 /// frame_b's pose relative to frame_a: R rotates frame_a coordinates into
 /// frame_b's, p is frame_b's origin in frame_a coordinates.
@@ -174,11 +218,42 @@ pose<T> relative_pose_of(const J& j, const T* q) {
   }
 }
 
-/// Keeps q valid: the joint's normalize(q) if it declares one (a quaternion
-/// back to unit norm); a joint without it has no invalid q.
+/// Whether a joint's coordinates hold a unit quaternion (x, y, z, w) from
+/// q[J::quaternion_at] on (a Spherical's at 0, a FreeMotion's at 3):
+/// normalize_joint and check_joint_coordinates below then know what to do.
+template <class J>
+concept quaternion_joint = requires {
+  { J::quaternion_at } -> std::convertible_to<int>;
+  requires J::quaternion_at >= 0 && J::quaternion_at + 4 <= J::nq;
+};
+
+/// Keeps q valid: the joint's normalize(q) if it declares one; else its
+/// quaternion back to unit norm (quaternion_joint); a joint with neither has
+/// no invalid q.
 template <class J, class T>
 void normalize_joint(const J& j, T* q) {
   if constexpr (requires { j.normalize(q); }) j.normalize(q);
+  else if constexpr (quaternion_joint<J>) quaternion::normalize(q + J::quaternion_at);
+}
+
+/// Throws parameter_error naming the joint if its coordinates are not valid:
+/// the joint's check_coordinates(q) if it declares one; else a quaternion
+/// whose squared norm is off 1 by more than 1e-6, an input mistake (written
+/// by hand, not from an orientation), not drift.
+template <class J, class T>
+void check_joint_coordinates(const J& j, const T* q) {
+  if constexpr (requires { j.check_coordinates(q); }) {
+    j.check_coordinates(q);
+  } else if constexpr (quaternion_joint<J>) {
+    const T* e = q + J::quaternion_at;
+    const double n2 = static_cast<double>(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3]);
+    if (!(std::abs(n2 - 1) <= 1e-6))
+      throw parameter_error(detail::concat(J::type_name, " \"", J::name.view(), "\": its quaternion (x, y, z, w) = [",
+                                           static_cast<double>(e[0]), ", ", static_cast<double>(e[1]), ", ",
+                                           static_cast<double>(e[2]), ", ", static_cast<double>(e[3]),
+                                           "] has squared norm ", n2,
+                                           ", not 1; set it with set_joint from an orientation, or normalize(scene, x)"));
+  }
 }
 
 /// Whether a joint's normalize(q) changes anything, so that a stepper must
@@ -189,6 +264,89 @@ template <class J>
 constexpr bool normalizes() {
   if constexpr (requires { J::normalizes; }) return J::normalizes;
   else return J::nq != J::nv;
+}
+
+/// Whether a joint is plain: as many coordinates as rates, and its first nq
+/// internals (write_internals) are those coordinates, scalars, in order (a
+/// Revolute's φ, a Planar's s_x, s_y, φ). A plain joint may leave out
+/// read_state, state and write_state: the defaults below read and set its
+/// coordinates and rates as they are.
+template <class J>
+constexpr bool plain_joint() {
+  if constexpr (!requires { J::internals; } || J::nq != J::nv || quaternion_joint<J>) {
+    return false;
+  } else {
+    if (static_cast<int>(J::internals.size()) < J::nq) return false;
+    for (int i = 0; i < J::nq; ++i)
+      if (J::internals[i].kind != expr::var_kind::scalar) return false;
+    return true;
+  }
+}
+
+/// A plain joint's state set by hand: its coordinate and rate {.q, .v}, or
+/// for several, {.q = {…}, .v = {…}}.
+template <int N>
+struct coordinate_state {
+  std::array<double, N> q{}, v{};
+};
+template <>
+struct coordinate_state<1> {
+  double q = 0, v = 0;
+};
+
+namespace detail {
+template <class J>
+struct joint_state_type {
+  using type = coordinate_state<J::nq>;
+};
+template <class J>
+  requires requires { typename J::state; }
+struct joint_state_type<J> {
+  using type = typename J::state;
+};
+}  // namespace detail
+
+/// The type a joint's state is set from (set_joint, initial_state): its own
+/// state, or a plain joint's coordinate_state.
+template <class J>
+using joint_state_t = typename detail::joint_state_type<J>::type;
+
+/// Sets q and v from a state set by hand: the joint's own write_state, or a
+/// plain joint's coordinates and rates, each checked to be finite.
+template <class J>
+void write_joint_state(const J& j, const joint_state_t<J>& s, double* q, double* v) {
+  if constexpr (requires { j.write_state(s, q, v); }) {
+    j.write_state(s, q, v);
+  } else {
+    static_assert(plain_joint<J>(), "flange: a joint that is not plain (core/joint.hpp: plain_joint) states its own "
+                                    "struct state and write_state(s, q, v)");
+    const auto at = [](const auto& a, int i) {
+      if constexpr (J::nq == 1) return a;
+      else return a[static_cast<std::size_t>(i)];
+    };
+    for (int i = 0; i < J::nq; ++i) {
+      const std::string k = J::nq == 1 ? std::string() : detail::concat(" ", i);
+      detail::require_finite(J::name.view(), J::type_name, detail::concat("the initial coordinate", k), at(s.q, i));
+      detail::require_finite(J::name.view(), J::type_name, detail::concat("the initial rate", k), at(s.v, i));
+      q[i] = at(s.q, i);
+      v[i] = at(s.v, i);
+    }
+  }
+}
+
+/// q and v back from the joint's internals, get(i, rate) pointing at the
+/// value or rate of internal i (the residual's inputs): the joint's own
+/// read_state, or a plain joint's first nq internals.
+template <class J, class T, class Get>
+void read_joint_state(const J& j, Get&& get, T* q, T* v) {
+  if constexpr (requires { j.read_state(get, q, v); }) {
+    j.read_state(get, q, v);
+  } else {
+    for (int i = 0; i < J::nq; ++i) {
+      q[i] = *get(i, false);
+      v[i] = *get(i, true);
+    }
+  }
 }
 
 /// The variables a joint writes (write_internals) receive their value and
@@ -245,7 +403,7 @@ concept planar_info = requires {
 template <class J>
 concept internals_io = requires(const J& j, const double* q, const double* v, double* o) {
   j.write_internals(q, v, [](int, const auto&, const auto&) {});
-  j.read_state([](int, bool) -> const double* { return nullptr; }, o, o);
+  requires plain_joint<J>() || requires { j.read_state([](int, bool) -> const double* { return nullptr; }, o, o); };
 };
 }  // namespace joint_requirements
 

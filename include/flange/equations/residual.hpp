@@ -62,7 +62,7 @@ void joint_state_from(const S& scene, const Vy& y, const Vyd& yd, T* q, T* v) {
               const int o = S::template slot_offset<I>(4 * nf + k);
               return rate ? yd.data() + o : y.data() + o;
             };
-            scene.template component<I>().read_state(get, q + S::tree.q_offset[I], v + S::tree.v_offset[I]);
+            read_joint_state(scene.template component<I>(), get, q + S::tree.q_offset[I], v + S::tree.v_offset[I]);
           }
         }(),
         ...);

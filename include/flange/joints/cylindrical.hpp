@@ -31,7 +31,7 @@ namespace flange {
 
 namespace detail {
 template <class T, class Axis, int Dir>
-struct cylindrical_motion {
+struct cylindrical_motion : motion_base<T> {
   static constexpr int nv = 2;
   using rotation_t = std::conditional_t<Axis::fixed, coordinate_rotation<T, (Axis::fixed ? Axis::index : 0)>, Mat3<T>>;
   using axis_t = decltype(axis::signed_unit<T, Axis, Dir>(Vec3d{}));
@@ -47,14 +47,6 @@ struct cylindrical_motion {
   FLANGE_INLINE auto pd(const V& v) const {
     if constexpr (is_no_rates<V>) return zero_vec<T>{};
     else return v[0] * n;
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> w_bias(const V&) const {
-    return {};
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> pd_bias(const V&) const {
-    return {};
   }
   template <class N, class F>
   FLANGE_INLINE std::array<T, 2> project(const N& torque, const F& force) const {
@@ -132,25 +124,6 @@ class Cylindrical {
     set(1, q[1], v[1]);
     set(2, R, Mat3<T>(-tilde<T>(Vec3<T>(n_.cast<T>() * v[1])) * R));
   }
-  template <class T, class Get>
-  void read_state(Get&& get, T* q, T* v) const {
-    for (int i = 0; i < 2; ++i) {
-      q[i] = *get(i, false);
-      v[i] = *get(i, true);
-    }
-  }
-  /// A state set by hand: (s, φ) and (ṡ, φ̇).
-  struct state {
-    std::array<double, 2> q{}, v{};
-  };
-  void write_state(const state& s, double* q, double* v) const {
-    for (int i = 0; i < 2; ++i) {
-      detail::require_finite(name.view(), type_name, "an initial coordinate", s.q[i]);
-      detail::require_finite(name.view(), type_name, "an initial rate", s.v[i]);
-      q[i] = s.q[i], v[i] = s.v[i];
-    }
-  }
-
   static constexpr auto s = internal_<2, 0, expr::var_kind::scalar>;
   static constexpr auto phi = internal_<2, 1, expr::var_kind::scalar>;
   static constexpr auto R_rel = internal_<2, 2, expr::var_kind::rot>;

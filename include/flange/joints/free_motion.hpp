@@ -32,7 +32,7 @@ namespace flange {
 namespace detail {
 /// A free motion's motion (core/joint.hpp).
 template <class T>
-struct free_motion_motion {
+struct free_motion_motion : motion_base<T> {
   static constexpr int nv = 6;
   Mat3<T> E;
   dense_vec<T> p;
@@ -45,14 +45,6 @@ struct free_motion_motion {
   FLANGE_INLINE auto pd(const V& v) const {
     if constexpr (is_no_rates<V>) return zero_vec<T>{};
     else return to_svec(Vec3<T>(v[0], v[1], v[2]));
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> w_bias(const V&) const {
-    return {};
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> pd_bias(const V&) const {
-    return {};
   }
   template <class N, class F>
   FLANGE_INLINE std::array<T, 6> project(const N& torque, const F& force) const {
@@ -80,6 +72,8 @@ class FreeMotion {
 
   // ---------------------------------------------------------- motion
   static constexpr int nq = 7, nv = 6;
+  /// Its unit quaternion (x, y, z, w) starts at q[3] (core/joint.hpp: quaternion_joint).
+  static constexpr int quaternion_at = 3;
   static constexpr bool reversible = false;
   static constexpr int planar_normal() { return -1; }
   static constexpr bool moves_in_plane(int) { return false; }
@@ -103,10 +97,6 @@ class FreeMotion {
   void qdot(const T* q, const T* v, T* qd) const {
     for (int i = 0; i < 3; ++i) qd[i] = v[i];
     quaternion::rate(q + 3, v + 3, qd + 3);
-  }
-  template <class T>
-  void normalize(T* q) const {
-    quaternion::normalize(q + 3);
   }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const {
@@ -141,16 +131,6 @@ class FreeMotion {
     detail::require_finite(name.view(), type_name, "the initial angular velocity w", s.w);
     for (int i = 0; i < 3; ++i) q[i] = s.r(i), v[i] = s.v(i), v[3 + i] = s.w(i);
     quaternion::from_rotation(s.R.R, q + 3);
-  }
-  template <class T>
-  void check_coordinates(const T* q) const {
-    const double n2 = static_cast<double>(q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]);
-    if (!(std::abs(n2 - 1) <= 1e-6))
-      throw parameter_error(detail::concat(type_name, " \"", name.view(), "\": its quaternion (x, y, z, w) = [",
-                                           static_cast<double>(q[3]), ", ", static_cast<double>(q[4]), ", ",
-                                           static_cast<double>(q[5]), ", ", static_cast<double>(q[6]),
-                                           "] has squared norm ", n2,
-                                           ", not 1; set it with set_joint from an orientation, or normalize(scene, x)"));
   }
 
   static constexpr auto r_rel = internal_<2, 0, expr::var_kind::vec>;

@@ -46,7 +46,7 @@ auto planar_second_axis(const Vec3d& ey) {
 }
 
 template <class T, class Normal, class First>
-struct planar_motion {
+struct planar_motion : motion_base<T> {
   static constexpr int nv = 3;
   using n_t = decltype(axis::signed_unit<T, Normal, 1>(Vec3d{}));
   using ex_t = decltype(axis::signed_unit<T, std::conditional_t<(Normal::fixed && First::fixed), First, axis::any>, 1>(
@@ -67,14 +67,6 @@ struct planar_motion {
   FLANGE_INLINE auto pd(const V& v) const {
     if constexpr (is_no_rates<V>) return zero_vec<T>{};
     else return v[0] * ex + v[1] * ey;
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> w_bias(const V&) const {
-    return {};
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> pd_bias(const V&) const {
-    return {};
   }
   template <class N, class F>
   FLANGE_INLINE std::array<T, 3> project(const N& torque, const F& force) const {
@@ -163,25 +155,6 @@ class Planar {
     for (int i = 0; i < 3; ++i) set(i, q[i], v[i]);
     set(3, R, Mat3<T>(-tilde<T>(Vec3<T>(n_.cast<T>() * v[2])) * R));
   }
-  template <class T, class Get>
-  void read_state(Get&& get, T* q, T* v) const {
-    for (int i = 0; i < 3; ++i) {
-      q[i] = *get(i, false);
-      v[i] = *get(i, true);
-    }
-  }
-  /// A state set by hand: (s_x, s_y, φ) and their rates.
-  struct state {
-    std::array<double, 3> q{}, v{};
-  };
-  void write_state(const state& s, double* q, double* v) const {
-    for (int i = 0; i < 3; ++i) {
-      detail::require_finite(name.view(), type_name, "an initial coordinate", s.q[i]);
-      detail::require_finite(name.view(), type_name, "an initial rate", s.v[i]);
-      q[i] = s.q[i], v[i] = s.v[i];
-    }
-  }
-
   static constexpr auto s_x = internal_<2, 0, expr::var_kind::scalar>;
   static constexpr auto s_y = internal_<2, 1, expr::var_kind::scalar>;
   static constexpr auto phi = internal_<2, 2, expr::var_kind::scalar>;

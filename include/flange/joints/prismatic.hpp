@@ -74,7 +74,7 @@ struct prismatic_params<Axis, Force, axis_law::friction> {
 /// A prismatic joint's motion (core/joint.hpp): E = 1, p = σ·s·n, S = (0, σ·n).
 /// A compile-time axis is not stored (see revolute_motion).
 template <class T, class Axis, int Dir>
-struct prismatic_motion {
+struct prismatic_motion : motion_base<T> {
   static constexpr int nv = 1;
   using axis_t = decltype(axis::signed_unit<T, Axis, Dir>(Vec3d{}));
   struct no_axis {};
@@ -94,14 +94,6 @@ struct prismatic_motion {
     if constexpr (is_no_rates<V>) return zero_vec<T>{};
     else if constexpr (Axis::fixed) return axial<T, Axis::index>(Dir > 0 ? v[0] : -v[0]);
     else return v[0] * n_;
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> w_bias(const V&) const {
-    return {};
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> pd_bias(const V&) const {
-    return {};
   }
   template <class N, class F>
   FLANGE_INLINE std::array<T, 1> project(const N&, const F& force) const {
@@ -183,28 +175,12 @@ class Prismatic {
   void write_internals(const T* q, const T* v, Set&& set) const {
     set(0, q[0], v[0]);
   }
-  template <class T, class Get>
-  void read_state(Get&& get, T* q, T* v) const {
-    q[0] = *get(0, false);
-    v[0] = *get(0, true);
-  }
-
   /// The generalized force on s: the axial force input at (t, x), plus the
   /// axis law's force (joints/axis_law.hpp).
   template <class T>
   void generalized_force(const T& t, const state_of<T> auto& x, const T* q, const T* v, T* tau) const {
     if constexpr (has_law) tau[0] = eval_input(f_, t, x) + detail::axis_law_force<Law>(law_, q[0], v[0]);
     else tau[0] = eval_input(f_, t, x);
-  }
-  /// A state set by hand: the coordinate and its rate.
-  struct state {
-    double q = 0, v = 0;
-  };
-  void write_state(const state& s, double* q, double* v) const {
-    detail::require_finite(name.view(), type_name, "the initial coordinate", s.q);
-    detail::require_finite(name.view(), type_name, "the initial rate", s.v);
-    q[0] = s.q;
-    v[0] = s.v;
   }
   /// The axis law's potential energy at q (a spring-damper's ½·c·(s − s0)², else 0).
   template <class T>

@@ -126,7 +126,7 @@ struct revolute_driven_params<Axis, axis_law::friction, Tau> {
 /// A compile-time axis is not stored: σ·e_I is a constant of the type, so
 /// the compiler folds it into every product.
 template <class T, class Axis, int Dir>
-struct revolute_motion {
+struct revolute_motion : motion_base<T> {
   static constexpr int nv = 1;
   using rotation_t = std::conditional_t<Axis::fixed, coordinate_rotation<T, (Axis::fixed ? Axis::index : 0)>, Mat3<T>>;
   using axis_t = decltype(axis::signed_unit<T, Axis, Dir>(Vec3d{}));
@@ -144,18 +144,6 @@ struct revolute_motion {
     if constexpr (is_no_rates<V>) return zero_vec<T>{};
     else if constexpr (Axis::fixed) return axial<T, Axis::index>(Dir > 0 ? v[0] : -v[0]);
     else return v[0] * n_;
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> pd(const V&) const {
-    return {};
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> w_bias(const V&) const {
-    return {};
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> pd_bias(const V&) const {
-    return {};
   }
   template <class N, class F>
   FLANGE_INLINE std::array<T, 1> project(const N& torque, const F&) const {
@@ -276,12 +264,6 @@ class Revolute {
     set(0, q[0], v[0]);
     set(1, R, Mat3<T>(-tilde<T>(n_.cast<T>() * v[0]) * R));
   }
-  template <class T, class Get>
-  void read_state(Get&& get, T* q, T* v) const {
-    q[0] = *get(0, false);
-    v[0] = *get(0, true);
-  }
-
   /// The generalized force on φ: the drive's torque input at (t, x), and
   /// the axis law's −c·(φ − φ0) − d·φ̇, or −d·φ̇ − F_c·tanh(φ̇ / v_s).
   template <class T>
@@ -290,16 +272,6 @@ class Revolute {
     if constexpr (driven && has_law) tau[0] = eval_input(tau_, t, x) + detail::axis_law_force<Law>(law_, q[0], v[0]);
     else if constexpr (driven) tau[0] = eval_input(tau_, t, x);
     else tau[0] = detail::axis_law_force<Law>(law_, q[0], v[0]);
-  }
-  /// A state set by hand: the coordinate and its rate.
-  struct state {
-    double q = 0, v = 0;
-  };
-  void write_state(const state& s, double* q, double* v) const {
-    detail::require_finite(name.view(), type_name, "the initial coordinate", s.q);
-    detail::require_finite(name.view(), type_name, "the initial rate", s.v);
-    q[0] = s.q;
-    v[0] = s.v;
   }
   /// The axis law's potential energy at q (a spring-damper's ½·c·(φ − φ0)², else 0).
   template <class T>

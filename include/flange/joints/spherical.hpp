@@ -14,7 +14,7 @@
 // velocity relative to frame_a in frame_b coordinates. E = R_rel(q), p = 0,
 // S = (1, 0) in child coordinates, no bias; q̇ = ½·q ⊗ (ω, 0). R_rel is
 // computed homogeneously from q, so it is orthogonal to round-off whatever
-// |q|; normalize() sets |q| = 1 again (docs/joints.md). Connected frame_b
+// |q|; normalising (quaternion_at) sets |q| = 1 again (docs/joints.md). Connected frame_b
 // toward the World, the child is frame_a: E = R_relᵀ, S = (−R_relᵀ, 0).
 #pragma once
 #include <array>
@@ -30,9 +30,10 @@
 namespace flange {
 
 namespace detail {
-/// A spherical joint's motion (core/joint.hpp).
+/// A spherical joint's motion (core/joint.hpp). No bias: ω is in child
+/// coordinates, and reversed, d/dt(−R_relᵀ·ω) = −R_relᵀ·ω̇ − R_relᵀ·(ω × ω).
 template <class T, int Dir>
-struct spherical_motion {
+struct spherical_motion : motion_base<T> {
   static constexpr int nv = 3;
   Mat3<T> R;  ///< R_rel(q)
   Mat3<T> E;  ///< R_rel, or R_relᵀ when reversed
@@ -42,18 +43,6 @@ struct spherical_motion {
     if constexpr (is_no_rates<V>) return zero_vec<T>{};
     else if constexpr (Dir > 0) return to_svec(Vec3<T>(v[0], v[1], v[2]));
     else return to_svec(Vec3<T>(-(R.transpose() * Vec3<T>(v[0], v[1], v[2]))));
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> pd(const V&) const {
-    return {};
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> w_bias(const V&) const {
-    return {};  // reversed: d/dt(−R_relᵀ·ω) = −R_relᵀ·ω̇ − R_relᵀ·(ω × ω)
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> pd_bias(const V&) const {
-    return {};
   }
   template <class N, class F>
   FLANGE_INLINE std::array<T, 3> project(const N& torque, const F&) const {
@@ -80,6 +69,8 @@ class Spherical {
 
   // ---------------------------------------------------------- motion
   static constexpr int nq = 4, nv = 3;
+  /// Its unit quaternion (x, y, z, w) starts at q[0] (core/joint.hpp: quaternion_joint).
+  static constexpr int quaternion_at = 0;
   static constexpr bool reversible = true;
   static constexpr int planar_normal() { return -1; }
   static constexpr bool moves_in_plane(int) { return false; }
@@ -103,10 +94,6 @@ class Spherical {
   template <class T>
   void qdot(const T* q, const T* v, T* qd) const {
     quaternion::rate(q, v, qd);
-  }
-  template <class T>
-  void normalize(T* q) const {
-    quaternion::normalize(q);
   }
   /// As a cut joint: the quaternion of frame_b's orientation in frame_a
   /// and the relative angular velocity in frame_b coordinates.
@@ -140,17 +127,6 @@ class Spherical {
     detail::require_finite(name.view(), type_name, "the initial angular velocity w", s.w);
     quaternion::from_rotation(s.R.R, q);
     for (int i = 0; i < 3; ++i) v[i] = s.w(i);
-  }
-  /// A quaternion far from unit norm is an input mistake, not drift.
-  template <class T>
-  void check_coordinates(const T* q) const {
-    const double n2 = static_cast<double>(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    if (!(std::abs(n2 - 1) <= 1e-6))
-      throw parameter_error(detail::concat(type_name, " \"", name.view(), "\": its quaternion (x, y, z, w) = [",
-                                           static_cast<double>(q[0]), ", ", static_cast<double>(q[1]), ", ",
-                                           static_cast<double>(q[2]), ", ", static_cast<double>(q[3]),
-                                           "] has squared norm ", n2,
-                                           ", not 1; set it with set_joint from an orientation, or normalize(scene, x)"));
   }
 
   static constexpr auto R_rel = internal_<2, 0, expr::var_kind::rot>;

@@ -47,7 +47,7 @@ FLANGE_INLINE auto typed_axis_rotation(const N& n, const T& phi) {
 /// (α̇, β̇). Dir says which of the joint's coordinates these are: Dir > 0,
 /// (α, β) = (φ₁, φ₂); Dir < 0, (α, β) = (−φ₂, −φ₁).
 template <class T, class AxisA, class AxisB, int Dir>
-struct universal_motion {
+struct universal_motion : motion_base<T> {
   static constexpr int nv = 2;
   using first_axis = std::conditional_t<(Dir > 0), AxisA, AxisB>;
   using second_axis = std::conditional_t<(Dir > 0), AxisB, AxisA>;
@@ -76,17 +76,9 @@ struct universal_motion {
     }
   }
   template <class V>
-  FLANGE_INLINE zero_vec<T> pd(const V&) const {
-    return {};
-  }
-  template <class V>
   FLANGE_INLINE auto w_bias(const V& v) const {
     const auto r = rates(v);
     return (r[0] * r[1]) * cross(u, b);
-  }
-  template <class V>
-  FLANGE_INLINE zero_vec<T> pd_bias(const V&) const {
-    return {};
   }
   template <class N, class F>
   FLANGE_INLINE std::array<T, 2> project(const N& torque, const F&) const {
@@ -175,25 +167,6 @@ class Universal {
     set(1, q[1], v[1]);
     set(2, R, Mat3<T>(-tilde<T>(w) * R));
   }
-  template <class T, class Get>
-  void read_state(Get&& get, T* q, T* v) const {
-    for (int i = 0; i < 2; ++i) {
-      q[i] = *get(i, false);
-      v[i] = *get(i, true);
-    }
-  }
-  /// A state set by hand: (φ₁, φ₂) and their rates.
-  struct state {
-    std::array<double, 2> q{}, v{};
-  };
-  void write_state(const state& s, double* q, double* v) const {
-    for (int i = 0; i < 2; ++i) {
-      detail::require_finite(name.view(), type_name, "an initial angle", s.q[i]);
-      detail::require_finite(name.view(), type_name, "an initial rate", s.v[i]);
-      q[i] = s.q[i], v[i] = s.v[i];
-    }
-  }
-
   static constexpr auto phi1 = internal_<2, 0, expr::var_kind::scalar>;
   static constexpr auto phi2 = internal_<2, 1, expr::var_kind::scalar>;
   static constexpr auto R_rel = internal_<2, 2, expr::var_kind::rot>;

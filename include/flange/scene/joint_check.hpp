@@ -41,8 +41,8 @@ constexpr bool check_joint() {
   else if constexpr (!req::neutral<C>) return lacks<C, "neutral()">();
   else if constexpr (!req::motion<C>) return lacks<C, "motion<T, Dir, NeedRotation>(q)">();
   else if constexpr (!req::motion_pose<C>) return lacks<C, "motion(q).E and .p">();
-  else if constexpr (!req::motion_rates<C>) return lacks<C, "motion(q).w(v) and .pd(v)">();
-  else if constexpr (!req::motion_biases<C>) return lacks<C, "motion(q).w_bias(v) and .pd_bias(v)">();
+  else if constexpr (!req::motion_rates<C>) return lacks<C, "motion(q).w(v) and .pd(v) (a motion derived from motion_base<T> has pd = 0)">();
+  else if constexpr (!req::motion_biases<C>) return lacks<C, "motion(q).w_bias(v) and .pd_bias(v) (derive the motion from motion_base<T> for zero biases)">();
   else if constexpr (!req::motion_project<C>) return lacks<C, "motion(q).project(n, f)">();
   else if constexpr (!req::motion_columns<C>) return lacks<C, "motion(q).col<k>()">();
   else if constexpr (!req::qdot<C>) return lacks<C, "qdot(q, v, qd)">();

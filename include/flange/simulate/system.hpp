@@ -161,10 +161,10 @@ struct named_joint {
   using type = typename S::template component_type<index>;
 };
 template <class S, class State, int C>
-void write_joint(const S& scene, State& x, const typename S::template component_type<C>::state& value) {
+void write_joint(const S& scene, State& x, const joint_state_t<typename S::template component_type<C>>& value) {
   std::array<double, S::template component_type<C>::nq> q;
   std::array<double, S::template component_type<C>::nv> v;
-  scene.template component<C>().write_state(value, q.data(), v.data());
+  write_joint_state(scene.template component<C>(), value, q.data(), v.data());
   for (std::size_t i = 0; i < q.size(); ++i) x[S::tree.q_offset[C] + i] = q[i];
   for (std::size_t i = 0; i < v.size(); ++i) x[S::n_q + S::tree.v_offset[C] + i] = v[i];
 }
@@ -175,7 +175,7 @@ void write_joint(const S& scene, State& x, const typename S::template component_
 /// {.r, .v, .R, .w}; Universal, Cylindrical, Planar: {.q = {…}, .v = {…}}),
 /// checked: an orientation must be a rotation, every number finite.
 template <fixed_string Name, class S, class State>
-void set_joint(const S& scene, State& x, const typename detail::named_joint<S, Name>::type::state& value) {
+void set_joint(const S& scene, State& x, const joint_state_t<typename detail::named_joint<S, Name>::type>& value) {
   S::require_state_size(x);
   detail::write_joint<S, State, detail::named_joint<S, Name>::index>(scene, x, value);
 }
@@ -189,7 +189,7 @@ void set_joint(const S& scene, State& x, const typename detail::named_joint<S, N
 /// checked at compile time, and a name given twice is an error.
 template <fixed_string... Names, class S>
 typename S::state_type initial_state(const S& scene,
-                                     const typename detail::named_joint<S, Names>::type::state&... values) {
+                                     const joint_state_t<typename detail::named_joint<S, Names>::type>&... values) {
   constexpr std::array<int, sizeof...(Names)> idx{detail::named_joint<S, Names>::index...};
   constexpr int twice = [&] {
     for (std::size_t i = 0; i < idx.size(); ++i)
@@ -214,7 +214,7 @@ void check_coordinates(const S& scene, const State& x) {
   detail::for_links<S>([&](auto l) {
     using LI = detail::link_info<S, decltype(l)::value>;
     const auto& j = scene.template component<LI::joint>();
-    if constexpr (requires { j.check_coordinates(x.data()); }) j.check_coordinates(x.data() + LI::q);
+    check_joint_coordinates(j, x.data() + LI::q);
   });
 }
 
