@@ -60,7 +60,7 @@ auto arm_study() {
   auto setup = [](const std::array<double, 1>& c) {
     return std::pair{models::robot_arm(), decltype(models::robot_arm())::state_type{c[0], 0.0}};
   };
-  return en::make(setup, en::integration{.t1 = 20.0, .abs_tol = 1e-10, .rel_tol = 1e-10},
+  return en::make(setup, 0.0, 20.0, {.tolerance = 1e-10},
                   en::maximum("max_rate", [](const auto&, double, const auto& x) { return std::abs(x[1]); }),
                   en::final_state{});
 }
@@ -76,7 +76,7 @@ auto crane_study() {
     return std::pair{models::controlled_crane(p), models::controlled_crane_rest()};
   };
   auto swing = [](const auto&, double, const auto& x) { return std::abs(x[1] + std::numbers::pi / 2); };
-  return en::make(setup, en::integration{.t1 = 20.0, .abs_tol = 1e-8, .rel_tol = 1e-8},
+  return en::make(setup, 0.0, 20.0, {.tolerance = 1e-8},
                   en::maximum("max_swing", swing), en::settling_time("settle", swing, 0.01));
 }
 const auto crane_cases = en::grid<2>({"kp", "m_load"}, {en::logspace(2, 200, 20), en::linspace(0.1, 3.0, 20)});

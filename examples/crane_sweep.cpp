@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
   };
   // θ = φ + π/2: the load's angle from the downward vertical.
   auto swing = [](const auto&, double, const auto& x) { return std::abs(x[1] + std::numbers::pi / 2); };
-  auto study = en::make(setup, en::integration{.t0 = 0, .t1 = 20, .dt = 1e-3, .abs_tol = 1e-8, .rel_tol = 1e-8},
+  auto study = en::make(setup, 0.0, 20.0, {.tolerance = 1e-8, .dt = 1e-3},
                         en::maximum("max_swing", swing), en::settling_time("settling_time", swing, 0.01),
                         en::final_value("final_s", [](const auto&, double, const auto& x) { return x[0]; }));
   const auto start = std::chrono::steady_clock::now();

@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
     return std::pair{models::controlled_crane(p), models::controlled_crane_rest()};
   };
   auto swing = [](const auto&, double, const auto& x) { return std::abs(x[1] + std::numbers::pi / 2); };
-  auto study = en::make(setup, en::integration{.t1 = 4.0, .abs_tol = 1e-8, .rel_tol = 1e-8},
+  auto study = en::make(setup, 0.0, 4.0, {.tolerance = 1e-8},
                         en::maximum("max_swing", swing), en::settling_time("settle", swing, 0.01), en::final_state{});
   const en::run_options quiet{.block = 8, .progress_line = en::run_options::show::never};
   const auto by_ranks = en::run_mpi(world, study, cases, en::serial{}, quiet);
@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
     close_loops<"crank_pivot">(fb, x);
     return std::pair{fb, x};
   };
-  auto loop_study = en::make(fourbar_at, en::integration{.t1 = 50.0, .abs_tol = 1e-6, .rel_tol = 1e-6},
+  auto loop_study = en::make(fourbar_at, 0.0, 50.0, {.tolerance = 1e-6},
                              en::final_state{});
   const auto loops_by_ranks = en::run_mpi(world, loop_study, speeds, en::serial{}, quiet);
   if (world.rank() != 0) return 0;

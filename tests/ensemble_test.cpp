@@ -62,7 +62,7 @@ TEST_CASE("a sweep over the pendulum's amplitude gives the exact period 4·sqrt(
   // zero, upward, at the far turning point: half a period.
   auto study = en::make([&](const std::array<double, 1>& c) {
     return std::pair{pendulum(L, 0.3), Pendulum::state_type{c[0] - std::numbers::pi / 2, 0.0}};
-  }, en::integration{.t0 = 0, .t1 = 6.0, .dt = 1e-3, .abs_tol = 1e-12, .rel_tol = 1e-12},
+  }, 0.0, 6.0, {.tolerance = 1e-12, .dt = 1e-3},
                          en::crossing("half_period", [](const auto&, double, const auto& x) { return x[1]; }, +1));
   const auto res = study.run(cases);
   REQUIRE(res.failed() == 0);
@@ -79,7 +79,7 @@ TEST_CASE("a sweep over the pendulum's amplitude gives the exact period 4·sqrt(
       [&](const std::array<double, 1>& c) {
         return std::pair{pendulum(L, 0.3), Pendulum::state_type{c[0] - std::numbers::pi / 2, 0.0}};
       },
-      en::integration{.t0 = 0, .t1 = 6.0, .dt = 1e-3, .abs_tol = 1e-12, .rel_tol = 1e-12},
+      0.0, 6.0, {.tolerance = 1e-12, .dt = 1e-3},
       en::crossing("half_period", [](const auto&, double, const auto& x) { return x[1]; }, +1));
   const auto res_bs = bs.run(cases);
   REQUIRE(res_bs.failed() == 0);
@@ -100,16 +100,15 @@ TEST_CASE("a sweep over the pendulum's amplitude gives the exact period 4·sqrt(
 
 TEST_CASE("a case's row equals simulate()'s bit for bit, evaluations included") {
   const auto cases = en::grid<2>({"kp", "m_load"}, {en::linspace(4, 40, 4), en::linspace(0.2, 2.0, 3)});
-  const en::integration in{.t0 = 0, .t1 = 5.0, .dt = 1e-3, .abs_tol = 1e-9, .rel_tol = 1e-9};
-  auto study = en::make(crane_setup, in, en::final_state{});
+  const simulate_options in{.tolerance = 1e-9, .dt = 1e-3};
+  const double t0 = 0, t1 = 5.0;
+  auto study = en::make(crane_setup, t0, t1, in, en::final_state{});
   const auto res = study.run(cases);
   REQUIRE(res.failed() == 0);
   for (std::size_t i = 0; i < cases.size(); ++i) {
     auto [crane, x0] = crane_setup(cases[i]);
-    // simulate's one tolerance is both of the ensemble's
     long steps = -1;  // the observer sees the start and every step
-    const auto x = simulate(crane, x0, in.t0, in.t1, {.tolerance = in.abs_tol, .dt = in.dt},
-                            [&](const auto&, double) { ++steps; });
+    const auto x = simulate(crane, x0, t0, t1, in, [&](const auto&, double) { ++steps; });
     for (int k = 0; k < 4; ++k) REQUIRE(std::memcmp(&res.rows[i].values[k], &x[k], sizeof(double)) == 0);
     REQUIRE(res.rows[i].steps == steps);
   }
@@ -120,7 +119,7 @@ TEST_CASE("serial and TBB runs on 2 threads and on all cores give the same rows 
   auto cases = en::sample<2>({"kp", "m_load"}, {en::log_uniform(1, 100), en::uniform(0.05, 3.0)}, 150, 7);
   cases.cases[17][1] = -1.0;                                      // a negative mass: refused by the scene
   cases.cases[60][0] = std::numeric_limits<double>::quiet_NaN();  // a NaN gain: a NaN force
-  auto study = en::make(crane_setup, en::integration{.t1 = 4.0, .abs_tol = 1e-8, .rel_tol = 1e-8},
+  auto study = en::make(crane_setup, 0.0, 4.0, {.tolerance = 1e-8},
                         en::maximum("max_swing", [](const auto& s, double t, const auto& x) { return swing(s, t, x); }),
                         en::settling_time("settle", [](const auto& s, double t, const auto& x) { return swing(s, t, x); },
                                           0.01),
@@ -140,7 +139,7 @@ TEST_CASE("a failing case is recorded with its reason, time and state, and the o
   // Case 3 asks for a negative rod mass: the scene refuses it at construction.
   auto study = en::make([](const std::array<double, 1>& c) {
     return std::pair{pendulum(1.0, c[0] < -5 ? -1.0 : 0.3), Pendulum::state_type{c[0], 0.0}};
-  }, en::integration{.t1 = 2.0}, en::final_value("theta", [](const auto&, double, const auto& x) { return x[0]; }));
+  }, 0.0, 2.0, {}, en::final_value("theta", [](const auto&, double, const auto& x) { return x[0]; }));
   const auto res = study.run(cases);
   REQUIRE(res.failed() == 2);
   CHECK(res.rows[0].ok);
@@ -160,7 +159,7 @@ TEST_CASE("a failing case is recorded with its reason, time and state, and the o
   SECTION("a spent budget is the case's failure, with the time it was spent and the last accepted state") {
     auto tight = en::make([](const std::array<double, 1>& c) {
       return std::pair{pendulum(1.0, 0.3), Pendulum::state_type{c[0], 0.0}};
-    }, en::integration{.t1 = 2.0, .max_rhs_evals = 60}, en::final_state{});
+    }, 0.0, 2.0, {.max_rhs_evals = 60}, en::final_state{});
     const auto r = tight.run(en::list<1>({"phi0"}, {{0.5}}));
     REQUIRE(r.failed() == 1);
     CHECK(r.rows[0].reason.find("the budget of 60 derivative evaluations is spent") != std::string::npos);
@@ -205,4 +204,32 @@ TEST_CASE("cases: grids in order, seeded samples repeat and follow their distrib
   CHECK(std::abs(vn - 0.25) < 5 * 0.25 * std::sqrt(2.0 / 20000));
   CHECK_THROWS_WITH(en::sample<1>({"x"}, {en::normal(0, -1)}, 1, 0),
                     Catch::Contains("the distribution of \"x\" has invalid bounds"));
+}
+
+TEST_CASE("the options are simulate's: checked as simulate checks them, and the earlier spec still runs") {
+  const auto setup = [](const std::array<double, 1>& c) {
+    return std::pair{pendulum(1.0, 0.3), Pendulum::state_type{c[0], 0.0}};
+  };
+  CHECK_THROWS_WITH(en::make(setup, 0.0, 1.0, {.tolerance = 1e-17}, en::final_state{}),
+                    Catch::Matchers::Contains("ensemble") && Catch::Matchers::Contains("double precision"));
+  CHECK_THROWS_WITH(en::make(setup, 0.0, 1.0, {.dt = 0}, en::final_state{}),
+                    Catch::Matchers::Contains("dt = 0"));
+  CHECK_THROWS_WITH(en::make(setup, 1.0, 1.0, {}, en::final_state{}), Catch::Matchers::Contains("t1 > t0"));
+  // A relative tolerance of its own reaches the stepper: the case ends where
+  // simulate ends with the same options.
+  const simulate_options o{.tolerance = 1e-10, .rel_tolerance = 1e-6};
+  const auto cases = en::list<1>({"phi0"}, {{0.5}});
+  const auto r = en::make(setup, 0.0, 2.0, o, en::final_state{}).run(cases);
+  auto [p, x0] = setup(cases[0]);
+  const auto x = simulate(p, x0, 0.0, 2.0, o);
+  const auto x_abs = simulate(p, x0, 0.0, 2.0, {.tolerance = 1e-10});
+  CHECK(std::memcmp(&r.rows[0].values[0], &x[0], sizeof(double)) == 0);
+  CHECK(x[0] != x_abs[0]);  // the relative tolerance took effect
+  // ensemble::integration, the earlier spec (deprecated), maps onto the options.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+  const auto old = en::make(setup, en::integration{.t1 = 2.0, .abs_tol = 1e-10, .rel_tol = 1e-6}, en::final_state{})
+                       .run(cases);
+#pragma GCC diagnostic pop
+  CHECK(std::memcmp(&old.rows[0].values[0], &x[0], sizeof(double)) == 0);
 }

@@ -78,7 +78,7 @@ void require_invariants(const scene_case<S>& c, const typename S::state_type& x,
 template <class Method, class S, class Policy>
 typename S::state_type ensemble_final(const scene_case<S>& c, const Policy& policy) {
   auto study = en::make_with<Method>([&](const std::array<double, 1>&) { return std::pair{c.scene, c.x0}; },
-                                     en::integration{.t0 = 0, .t1 = c.t1, .dt = 1e-3, .abs_tol = tol, .rel_tol = tol},
+                                     0.0, c.t1, {.tolerance = tol, .dt = 1e-3},
                                      en::final_state{});
   const auto res = study.run(en::list<1>({"one"}, {{0.0}}), policy,
                              {.progress_line = en::run_options::show::never});
@@ -218,7 +218,7 @@ TEST_CASE("a case whose loop cannot be closed again fails with the loop, the tim
     CHECK(e.time > 0);
   }
   auto study = en::make_with<derailing>([&](const std::array<double, 1>&) { return std::pair{c.scene, c.x0}; },
-                                        en::integration{.t1 = 1.0}, en::final_state{});
+                                        0.0, 1.0, {}, en::final_state{});
   const auto res = study.run(en::list<1>({"one"}, {{0.0}}), en::serial{}, {.progress_line = en::run_options::show::never});
   const auto& row = res.rows[0];
   INFO(row.reason);

@@ -234,7 +234,7 @@ TEST_CASE("an ensemble allocates per run, never per case: 10 and 200 cases make 
     return std::pair{crane, decltype(crane)::state_type{0.0, -1.0, 0.0, 0.0}};
   };
   namespace en = flange::ensemble;
-  auto study = en::make(setup, en::integration{.t1 = 0.5},
+  auto study = en::make(setup, 0.0, 0.5, {},
                         en::maximum("swing", [](const auto&, double, const auto& x) { return std::abs(x[1]); }),
                         en::crossing("back", [](const auto&, double, const auto& x) { return x[3]; }, 0),
                         en::settling_time("settle", [](const auto&, double, const auto& x) { return x[3]; }, 0.1),

@@ -116,7 +116,7 @@ TEST_CASE("one ensemble study run from four threads at once, and its cases sprea
         p.m = c[0];
         return std::pair{models::gantry_crane(p, 0.5), std::array<double, 4>{0, c[1], 0, 0}};
       },
-      en::integration{.t0 = 0, .t1 = 2.0, .dt = 1e-3, .abs_tol = 1e-9, .rel_tol = 1e-9},
+      0.0, 2.0, {.tolerance = 1e-9, .dt = 1e-3},
       en::final_state{}, en::maximum("swing", [](const auto&, double, const auto& x) { return std::abs(x[1]); }));
   auto cases = en::grid<2>({"m", "theta0"}, {en::linspace(0.5, 3.0, 4), en::linspace(-1.0, 1.0, 4)});
   const auto serial = study.run(cases);

@@ -3,7 +3,7 @@
 //   auto cases = ensemble::grid<2>({"kp", "m_load"}, {ensemble::linspace(2, 40, 20), ensemble::linspace(0.1, 2, 20)});
 //   auto study = ensemble::make(
 //       [](const std::array<double, 2>& c) { return std::pair{make_crane(c[0], c[1]), Crane::state_type{…}}; },
-//       ensemble::integration{.t1 = 10, .abs_tol = 1e-8, .rel_tol = 1e-8},
+//       0.0, 10.0, {.tolerance = 1e-8},      // t0, t1 and simulate's options (simulate/options.hpp)
 //       ensemble::maximum("max_swing", swing), ensemble::settling_time("settle", error, 1.0));
 //   auto res = study.run(cases);                          // serial
 //   auto res = study.run(cases, ensemble::tbb_threads{}); // all cores (flange/ensemble/tbb.hpp)
@@ -11,11 +11,12 @@
 //
 // setup(case) builds the scene and its initial state from the case's
 // parameters: only run-time values change, the scene type is compiled once.
-// Each case is integrated with a dense-output stepper (dopri5 by default)
-// through `checked`, with its own evaluation budget, from t0 to t1 exactly
-// as odeint::integrate_adaptive does; the recorders watch every accepted
-// step. So a case's results are bit for bit those of the plain API, and they
-// do not depend on how many threads or ranks run the ensemble.
+// Each case is integrated as simulate(scene, x0, t0, t1, options) integrates
+// it (the same loop, the same checks and projections, its own evaluation
+// budget), with a dense-output method (dopri5 by default); the recorders
+// watch every accepted step. So a case's results are bit for bit those of
+// simulate(), and they do not depend on how many threads or ranks run the
+// ensemble.
 //
 // Nothing is lost: a case that throws (bad parameters in setup, a
 // simulation_error: a non-finite state, a singular mass matrix, a spent
@@ -79,12 +80,16 @@ struct record_steps {
   }
 };
 
-/// How each case is integrated.
+/// The span and options of the earlier make(setup, integration, …); use
+/// make(setup, t0, t1, simulate_options, …), which takes simulate's options.
 struct integration {
   double t0 = 0.0, t1 = 1.0;
-  double dt = 1e-3;  ///< the first step size
+  double dt = 1e-3;
   double abs_tol = 1e-8, rel_tol = 1e-8;
-  long max_rhs_evals = 10'000'000;  ///< per case: beyond it the case fails, not the ensemble
+  long max_rhs_evals = 10'000'000;
+  [[nodiscard]] simulate_options options() const {
+    return {.tolerance = abs_tol, .dt = dt, .max_rhs_evals = max_rhs_evals, .rel_tolerance = rel_tol};
+  }
 };
 
 /// One case's row: its values (NaN where a recorder saw nothing, or the case
@@ -205,12 +210,13 @@ class study {
   using scene_and_state = std::invoke_result_t<const Setup&, const std::array<double, K>&>;
 
  public:
-  study(Setup setup, integration in, Recorders... recs) : setup_(std::move(setup)), in_(in), recs_(recs...) {
-    if (!(in.t1 > in.t0) || !(in.dt > 0) || !(in.abs_tol > 0) || !(in.rel_tol >= 0) || in.max_rhs_evals < 1)
-      throw parameter_error(::flange::detail::concat("ensemble::integration: needs t1 > t0, dt > 0, abs_tol > 0, ",
-                                                     "rel_tol >= 0, max_rhs_evals >= 1 (got t0 = ", in.t0, ", t1 = ",
-                                                     in.t1, ", dt = ", in.dt, ", abs_tol = ", in.abs_tol,
-                                                     ", rel_tol = ", in.rel_tol, ")"));
+  /// Each case from t0 to t1 with simulate's options (simulate/options.hpp).
+  study(Setup setup, double t0, double t1, const simulate_options& o, Recorders... recs)
+      : setup_(std::move(setup)), t0_(t0), t1_(t1), options_(o), recs_(recs...) {
+    ::flange::detail::check_run("ensemble", o, t0, t1);
+    if (!(t1 > t0))
+      throw parameter_error(::flange::detail::concat("flange: ensemble: needs t1 > t0 (got t0 = ", t0, ", t1 = ", t1,
+                                                     ")"));
   }
 
   template <int K>
@@ -257,11 +263,10 @@ class study {
       X& x = std::get<1>(made);
       auto recs = recs_;  // this case's recorders
       record_steps<S, X, decltype(recs)> watch{s, recs, last, have_last};
-      o.steps = ::flange::detail::checked_run<Method>(s, x, in_.t0, in_.t1, in_.dt, in_.abs_tol, in_.rel_tol,
-                                                       in_.max_rhs_evals, evals, watch);
+      o.steps = ::flange::detail::checked_run<Method>(s, x, t0_, t1_, options_, evals, watch);
       int at = 0;
       std::apply([&](auto&... r) {
-        ((r.finish(s, in_.t1, x, o.values.data() + at), at += std::remove_cvref_t<decltype(r)>::template width<S>()),
+        ((r.finish(s, t1_, x, o.values.data() + at), at += std::remove_cvref_t<decltype(r)>::template width<S>()),
          ...);
       }, recs);
       o.ok = true;
@@ -311,23 +316,41 @@ class study {
     return r;
   }
 
-  const integration& spec() const { return in_; }
+  [[nodiscard]] double t0() const { return t0_; }
+  [[nodiscard]] double t1() const { return t1_; }
+  [[nodiscard]] const simulate_options& options() const { return options_; }
 
  private:
   Setup setup_;
-  integration in_;
+  double t0_, t1_;
+  simulate_options options_;
   std::tuple<Recorders...> recs_;
 };
 
-/// An ensemble integrated with dopri5 (dense output).
+/// An ensemble whose cases run from t0 to t1 as simulate() runs them, with
+/// its options, integrated with dopri5 (dense output).
 template <class Setup, class... Recorders>
-study<Setup, method::dopri5, Recorders...> make(Setup setup, integration in, Recorders... recs) {
-  return {std::move(setup), in, recs...};
+study<Setup, method::dopri5, Recorders...> make(Setup setup, double t0, double t1, const simulate_options& o,
+                                                Recorders... recs) {
+  return {std::move(setup), t0, t1, o, recs...};
 }
 /// The same with another dense-output method (see ensemble::method).
 template <class Method, class Setup, class... Recorders>
+study<Setup, Method, Recorders...> make_with(Setup setup, double t0, double t1, const simulate_options& o,
+                                             Recorders... recs) {
+  return {std::move(setup), t0, t1, o, recs...};
+}
+template <class Setup, class... Recorders>
+[[deprecated("flange: write ensemble::make(setup, t0, t1, {.tolerance = …, .dt = …, .max_rhs_evals = …}, "
+             "recorders…): an ensemble takes simulate's options")]]
+study<Setup, method::dopri5, Recorders...> make(Setup setup, integration in, Recorders... recs) {
+  return {std::move(setup), in.t0, in.t1, in.options(), recs...};
+}
+template <class Method, class Setup, class... Recorders>
+[[deprecated("flange: write ensemble::make_with<Method>(setup, t0, t1, {.tolerance = …}, recorders…): an "
+             "ensemble takes simulate's options")]]
 study<Setup, Method, Recorders...> make_with(Setup setup, integration in, Recorders... recs) {
-  return {std::move(setup), in, recs...};
+  return {std::move(setup), in.t0, in.t1, in.options(), recs...};
 }
 
 }  // namespace flange::ensemble

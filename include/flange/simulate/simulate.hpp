@@ -28,14 +28,9 @@
 #include "flange/simulate/checked.hpp"
 #include "flange/simulate/integrate.hpp"
 #include "flange/simulate/method.hpp"
+#include "flange/simulate/options.hpp"
 
 namespace flange {
-
-struct simulate_options {
-  double tolerance = 1e-8;  ///< the stepper's absolute and relative tolerance
-  double dt = 1e-3;         ///< the first step's size
-  long max_rhs_evals = 100'000'000;
-};
 
 namespace detail {
 /// The scene with its evaluations counted against a budget.
@@ -84,28 +79,15 @@ struct checked_steps {
   }
 };
 
-/// Checks simulate's options, and the times of a run.
-inline void check_run(const char* who, double tolerance, double t0, double t1, double dt) {
-  constexpr double eps = std::numeric_limits<double>::epsilon();
-  if (!(tolerance >= 10 * eps))
-    throw parameter_error(concat("flange: ", who, ": tolerance ", tolerance,
-                                 " cannot be met in double precision (round-off alone is ", eps,
-                                 " per step); use 1e-14 or more"));
-  if (!(std::isfinite(t0) && std::isfinite(t1)))
-    throw parameter_error(concat("flange: ", who, ": the times t0 = ", t0, " and t1 = ", t1, " must be finite"));
-  if (!(dt > 0))
-    throw parameter_error(concat("flange: ", who, ": the first step dt = ", dt, " must be positive"));
-}
-
 /// A checked run of the loop with a method: what simulate and an ensemble's
 /// case both do. Returns the number of steps; evals counts the evaluations.
 template <class Method, class S, class State, class Watcher>
-long checked_run(const S& scene, State& x, double t0, double t1, double dt, double abs_tol, double rel_tol,
-                 long max_rhs_evals, long& evals, Watcher& watcher) {
-  auto st = method_stepping<Method, State>(scene, abs_tol, rel_tol);
+long checked_run(const S& scene, State& x, double t0, double t1, const simulate_options& o, long& evals,
+                 Watcher& watcher) {
+  auto st = method_stepping<Method, State>(scene, o.abs_tol(), o.rel_tol());
   const checked_steps<S, decltype(st)> check{&scene, st};
-  counted_system<S> sys{&scene, &evals, max_rhs_evals};
-  return integrate(st, sys, scene, x, t0, t1, (t1 >= t0 ? 1 : -1) * dt, watcher, check);
+  counted_system<S> sys{&scene, &evals, o.max_rhs_evals};
+  return integrate(st, sys, scene, x, t0, t1, (t1 >= t0 ? 1 : -1) * o.dt, watcher, check);
 }
 }  // namespace detail
 
@@ -116,10 +98,10 @@ long checked_run(const S& scene, State& x, double t0, double t1, double dt, doub
 template <class Method = method::dopri5, class S, class Observer = boost::numeric::odeint::null_observer>
 typename S::state_type simulate(const S& scene, typename S::state_type x0, double t0, double t1,
                                 const simulate_options& o = {}, Observer observer = Observer()) {
-  detail::check_run("simulate", o.tolerance, t0, t1, o.dt);
+  detail::check_run("simulate", o, t0, t1);
   long evals = 0;
   detail::observe_steps<Observer> watch{observer};
-  detail::checked_run<Method>(scene, x0, t0, t1, o.dt, o.tolerance, o.tolerance, o.max_rhs_evals, evals, watch);
+  detail::checked_run<Method>(scene, x0, t0, t1, o, evals, watch);
   return x0;
 }
 
