@@ -125,6 +125,20 @@ TEST_CASE("flange::simulate allocates nothing: the crane (no projection), the fo
         }) == 0);
 }
 
+TEST_CASE("a trajectory allocates its storage once, before the first step: not per step, not per sample") {
+  // The times and the trajectory's two vectors, reserved up front: 3 blocks
+  // however many steps and samples (the four-bar: projected samples).
+  const auto fb = models::fourbar({});
+  decltype(fb)::state_type xf{0.3, 1.3, 2.4, 5.0, 0, 0};
+  close_loops<"crank_pivot">(fb, xf);
+  long steps_short = 0, steps_long = 0;
+  const long short_run = count_allocations([&] { steps_short = simulate(fb, xf, output_times(0.0, 0.1, 0.05)).steps; });
+  const long long_run = count_allocations([&] { steps_long = simulate(fb, xf, output_times(0.0, 5.0, 0.001)).steps; });
+  CHECK(steps_long > 10 * steps_short);
+  CHECK(short_run == 3);
+  CHECK(long_run == 3);
+}
+
 TEST_CASE("the residual, recovery, the Jacobian and the checked system allocate nothing") {
   std::mt19937 rng(6);
   const auto arm = models::robot_arm();

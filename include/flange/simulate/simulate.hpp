@@ -3,6 +3,8 @@
 //   auto x1 = flange::simulate(arm, x0, 0.0, 10.0);                    // dopri5 at 1e-8
 //   auto x1 = flange::simulate(arm, x0, 0.0, 10.0, {.tolerance = 1e-12}, observer);
 //   auto x1 = flange::simulate<method::rosenbrock4>(stiff, x0, 0.0, 10.0);   // rosenbrock4.hpp
+//   auto tr = flange::simulate(arm, x0, flange::output_times(0.0, 10.0, 0.01));  // the trajectory
+//   tr.t[k], tr.x[k]; tr.steps, tr.rhs_evals
 //
 // It runs the integration loop (integrate.hpp) with a method's dense-output
 // stepper (method.hpp; dopri5 by default): loops closed and quaternions
@@ -15,7 +17,10 @@
 // state and reason. So a non-finite state or derivative, a spent budget, a
 // singular mass matrix, a loop left open or a step size that collapses each
 // throw, with the time, the state and the reason, for a few per cent of a
-// step's cost (docs/performance.md). An ensemble's case runs the same loop
+// step's cost (docs/performance.md). Given output times, simulate returns the
+// states at those times, each from the stepper's dense output inside the step
+// that holds it (projected like the steps' ends where the scene needs it),
+// with the step and evaluation counts. An ensemble's case runs the same loop
 // with the same checks, so it ends bit for bit where simulate ends. The raw
 // Odeint system (the scene itself) stays for those who want their own
 // stepper; it neither checks nor projects.
@@ -23,6 +28,8 @@
 #include <boost/numeric/odeint/integrate/null_observer.hpp>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "flange/errors.hpp"
 #include "flange/simulate/checked.hpp"
@@ -89,7 +96,71 @@ long checked_run(const S& scene, State& x, double t0, double t1, const simulate_
   counted_system<S> sys{&scene, &evals, o.max_rhs_evals};
   return integrate(st, sys, scene, x, t0, t1, (t1 >= t0 ? 1 : -1) * o.dt, watcher, check);
 }
+/// The integration loop's watcher that keeps the states at the requested
+/// times (already checked: at least two, strictly monotone, the first t0).
+template <class State>
+struct sample_times {
+  const std::vector<double>& times;
+  std::vector<double>& t;
+  std::vector<State>& x;
+  std::size_t next = 1;
+  void start(const State& x0, double t0) {
+    t.push_back(t0);
+    x.push_back(x0);
+  }
+  template <class View>
+  void step(const View& v) {
+    const double dir = v.t1 >= v.t0 ? 1 : -1;
+    for (; next < times.size() && dir * (v.t1 - times[next]) >= 0; ++next) {
+      t.push_back(times[next]);
+      x.push_back(v.x1);
+      if (times[next] != v.t1) v.at(times[next], x.back());
+    }
+  }
+};
+
+/// Checks requested output times: at least two, finite, strictly monotone.
+inline void check_times(const std::vector<double>& times) {
+  if (times.size() < 2)
+    throw parameter_error(concat("flange: simulate: ", times.size(),
+                                 " output time(s) given; give the start and at least one more"));
+  const double dir = times[1] > times[0] ? 1 : -1;
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    if (!std::isfinite(times[k]))
+      throw parameter_error(concat("flange: simulate: output time ", k, " is ", times[k], ", not finite"));
+    if (k > 0 && !(dir * (times[k] - times[k - 1]) > 0))
+      throw parameter_error(concat("flange: simulate: the output times must be strictly ",
+                                   dir > 0 ? "increasing" : "decreasing", "; time ", k, " = ", times[k],
+                                   " follows ", times[k - 1]));
+  }
+}
 }  // namespace detail
+
+/// A run's states at the requested times, and what it cost.
+template <class State>
+struct trajectory {
+  std::vector<double> t;  ///< the requested times
+  std::vector<State> x;   ///< the state at each
+  long steps = 0;         ///< accepted steps
+  long rhs_evals = 0;     ///< derivative evaluations (a Jacobian's own not counted)
+  [[nodiscard]] std::size_t size() const { return t.size(); }
+};
+
+/// Times from t0 to t1 every dt: t0 + k·dt while before t1, and t1 itself
+/// (a last interval shorter than dt, never one shorter than 1e-9·dt).
+inline std::vector<double> output_times(double t0, double t1, double dt) {
+  if (!(std::isfinite(t0) && std::isfinite(t1) && t1 != t0))
+    throw parameter_error(detail::concat("flange: output_times: needs finite t0 != t1 (got ", t0, ", ", t1, ")"));
+  if (!(dt > 0 && std::isfinite(dt)))
+    throw parameter_error(detail::concat("flange: output_times: the interval dt = ", dt, " must be positive"));
+  const double span = std::abs(t1 - t0), dir = t1 > t0 ? 1 : -1;
+  const auto n = static_cast<std::size_t>(std::ceil(span / dt - 1e-9));
+  std::vector<double> times;
+  times.reserve(n + 1);
+  for (std::size_t k = 0; k < n; ++k) times.push_back(t0 + dir * static_cast<double>(k) * dt);
+  times.push_back(t1);
+  return times;
+}
 
 /// The state at t1 from x0 at t0; observer(x, t) sees the start and every
 /// step. Method: method::dopri5 (the default), method::bulirsch_stoer,
@@ -103,6 +174,24 @@ typename S::state_type simulate(const S& scene, typename S::state_type x0, doubl
   detail::observe_steps<Observer> watch{observer};
   detail::checked_run<Method>(scene, x0, t0, t1, o, evals, watch);
   return x0;
+}
+
+/// The states at the requested times, times[0] the start (x0's time),
+/// through the method's dense output, with the step and evaluation counts;
+/// checked and projected as the run to one end time is. The trajectory's
+/// storage is reserved before the first step: the loop allocates nothing.
+template <class Method = method::dopri5, class S>
+trajectory<typename S::state_type> simulate(const S& scene, const typename S::state_type& x0,
+                                            const std::vector<double>& times, const simulate_options& o = {}) {
+  detail::check_times(times);
+  detail::check_run("simulate", o, times.front(), times.back());
+  trajectory<typename S::state_type> tr;
+  tr.t.reserve(times.size());
+  tr.x.reserve(times.size());
+  detail::sample_times<typename S::state_type> watch{times, tr.t, tr.x};
+  auto x = x0;
+  tr.steps = detail::checked_run<Method>(scene, x, times.front(), times.back(), o, tr.rhs_evals, watch);
+  return tr;
 }
 
 }  // namespace flange
