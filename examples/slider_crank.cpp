@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
     print_equations(sc, std::cout);
     return 0;
   }
-  constexpr int slide = S::q_offset("slide");
+  constexpr int slide = S::q_offset<"slide">();
   auto x = initial_state<"crank_pivot", "crank_pin", "slide">(sc, {.q = 0.3, .v = 30.0}, {.q = -0.3},
                                                               {.q = p.crank + p.rod});
   close_loops<"crank_pivot">(sc, x);

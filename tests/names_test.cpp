@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include <flange/equations_of_motion.hpp>
+#include <flange/models/linkages.hpp>
 
 using namespace flange;
 
@@ -112,6 +113,24 @@ TEST_CASE("a quaternion joint left out of initial_state is the identity, not zer
   CHECK(x[o + 3] == 0.0);
   CHECK(x[o + 6] == 1.0);
   CHECK(x[S::q_offset("hinge")] == 0.3);
+}
+
+TEST_CASE("q_offset and v_offset: by a checked name at compile time, or at run time with did-you-mean") {
+  const auto body = scene(World<"world">({.g = {0, 0, 0}}), FreeMotion<"free">(), Revolute<"hinge", axis::z>(),
+                          Body<"a">({.m = 1, .J = Mat3d::Identity()}), Body<"b">({.m = 1, .J = Mat3d::Identity()}),
+                          connect<"world.frame_b", "free.frame_a">, connect<"free.frame_b", "a.frame_a">,
+                          connect<"free.frame_b", "hinge.frame_a">, connect<"hinge.frame_b", "b.frame_a">);
+  using S = decltype(body);
+  static_assert(S::q_offset<"free">() == 0 && S::q_offset<"hinge">() == 7);
+  static_assert(S::v_offset<"free">() == 0 && S::v_offset<"hinge">() == 6);
+  static_assert(S::q_offset("hinge") == S::q_offset<"hinge">());
+  CHECK_THROWS_WITH(S::q_offset("hinje"), Catch::Contains("no joint named \"hinje\"; did you mean \"hinge\"?"));
+  CHECK_THROWS_WITH(S::v_offset("a"), Catch::Contains("no joint named \"a\""));  // a body, not a joint
+  // A cut joint has no coordinates in the state, and says so.
+  const auto fb = models::fourbar({});
+  CHECK_THROWS_WITH(decltype(fb)::q_offset("rocker_pivot"),
+                    Catch::Contains("\"rocker_pivot\" closes a loop and is cut") && Catch::Contains("recover"));
+  CHECK(decltype(fb)::q_offset("rocker_pin") == 2);
 }
 
 TEST_CASE("internal<\"component\", \"variable\">(sol) reads a recovered internal from a generic lambda") {

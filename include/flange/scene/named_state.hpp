@@ -14,6 +14,8 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 
@@ -33,6 +35,13 @@ struct no_joint_named {
   static_assert(always_false<Name>,
                 "flange: the scene has no joint of this name (the first template argument); did you mean the "
                 "second? The joints it has are the third");
+};
+template <class Name>
+struct joint_is_cut {
+  static_assert(always_false<Name>,
+                "flange: this joint (the template argument) closes a loop, and the scene cut it there: it has no "
+                "coordinates in the state (its angle and rate are recovered: recover(scene, t, x).internal<\"name\", "
+                "\"phi\">(), docs/loops.md); name a joint of the loop's tree instead");
 };
 template <class Name, class Valid>
 struct joint_named_twice {
@@ -72,13 +81,35 @@ inline constexpr auto joint_name_table = [] {
 template <class S, fixed_string Name>
 constexpr int joint_named() {
   constexpr int c = S::index_of(Name.view());
-  if constexpr (c < 0 || S::tree.q_offset[c < 0 ? 0 : c] < 0) {
+  if constexpr (c >= 0 && S::tree.cut_of[c < 0 ? 0 : c] >= 0) {
+    (void)sizeof(diagnostic::joint_is_cut<member<Name>>);
+    return -1;
+  } else if constexpr (c < 0 || S::tree.q_offset[c < 0 ? 0 : c] < 0) {
     (void)sizeof(
         diagnostic::no_joint_named<member<Name>, diagnostic::suggest<joint_name_table<S>, Name>, joint_names<S>>);
     return -1;
   } else {
     return c;
   }
+}
+
+/// The component index of the joint named `name`, at run time: throws
+/// parameter_error naming the name and the closest joint, or saying that
+/// the joint is cut (in a constant expression, the throw is the error).
+template <class S>
+constexpr int joint_named(std::string_view name) {
+  const int c = S::index_of(name);
+  if (c >= 0 && S::tree.cut_of[c] >= 0)
+    throw parameter_error(concat("flange: joint \"", name, "\" closes a loop and is cut: it has no coordinates in ",
+                                 "the state (its angle and rate are recovered: recover(scene, t, x).internal<\"",
+                                 name, "\", \"phi\">())"));
+  if (c < 0 || S::tree.q_offset[c] < 0) {
+    const auto& names = joint_name_table<S>;
+    throw parameter_error(concat("flange: the scene has no joint named \"", name, "\"",
+                                 S::n_joints > 0 ? concat("; did you mean \"", names[closest_name(name, names)], "\"?")
+                                                 : std::string()));
+  }
+  return c;
 }
 
 }  // namespace detail

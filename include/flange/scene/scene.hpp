@@ -308,9 +308,27 @@ class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
   static constexpr int n_q = tree.n_q;
   static constexpr int n_v = tree.n_v;
   static constexpr int n_joints = tree.n_joints;
-  /// Offset in q and in v of the named joint's coordinates and rates.
-  static constexpr int q_offset(std::string_view joint) { return tree.q_offset[index_of(joint)]; }
-  static constexpr int v_offset(std::string_view joint) { return tree.v_offset[index_of(joint)]; }
+  /// Where the named joint's coordinates start in q (x[q_offset]) and its
+  /// rates in v (x[n_q + v_offset]), checked at compile time: a misspelt name
+  /// is one error with "did you mean", a cut joint (it has no coordinates in
+  /// the state) one that says so.
+  template <fixed_string Joint>
+  static constexpr int q_offset() {
+    constexpr int c = detail::joint_named<Scene, Joint>();
+    return c < 0 ? 0 : tree.q_offset[c];
+  }
+  template <fixed_string Joint>
+  static constexpr int v_offset() {
+    constexpr int c = detail::joint_named<Scene, Joint>();
+    return c < 0 ? 0 : tree.v_offset[c];
+  }
+  /// The same for a name known at run time: a name that is not a joint of
+  /// the tree throws parameter_error with "did you mean" (in a constant
+  /// expression, the throw is a compile-time error).
+  static constexpr int q_offset(std::string_view joint) { return tree.q_offset[detail::joint_named<Scene>(joint)]; }
+  static constexpr int v_offset(std::string_view joint) { return tree.v_offset[detail::joint_named<Scene>(joint)]; }
+  [[deprecated("flange: q_index is now q_offset (q_offset<\"name\">() is checked at compile time)")]]
+  static constexpr int q_index(std::string_view joint) { return q_offset(joint); }
 
   /// The state x = (q, v): every joint's coordinates, then every joint's rates.
   static constexpr int n_state = n_q + n_v;
