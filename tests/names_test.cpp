@@ -14,6 +14,15 @@ using namespace flange;
 
 namespace {
 
+// A user's own names beside `using namespace flange;`: the diagnostic tags
+// (constraints, rates, member, unknowns, …) live in flange::diagnostic, so
+// these are not ambiguous.
+int constraints() { return 3; }
+int rates() { return 2; }
+struct member {
+  int id = 7;
+};
+
 /// A slender link of mass m and length l, its centre of mass halfway along x.
 template <fixed_string Name>
 Body<Name, cm::offset> link(double m, double l) {
@@ -113,6 +122,10 @@ TEST_CASE("a quaternion joint left out of initial_state is the identity, not zer
   CHECK(x[o + 3] == 0.0);
   CHECK(x[o + 6] == 1.0);
   CHECK(x[S::q_offset("hinge")] == 0.3);
+}
+
+TEST_CASE("using namespace flange leaves a user's constraints(), rates() and member unambiguous") {
+  CHECK(constraints() + rates() + member{}.id == 12);
 }
 
 TEST_CASE("q_offset and v_offset: by a checked name at compile time, or at run time with did-you-mean") {

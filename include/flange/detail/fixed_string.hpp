@@ -20,8 +20,10 @@ struct fixed_string {
 };
 
 /// A name as a type, for diagnostics: the compiler prints member<"elbw">.
+namespace diagnostic {
 template <fixed_string Name>
 struct member {};
+}  // namespace diagnostic
 
 /// a + b, at compile time ("j3" + ".frame_b").
 template <std::size_t A, std::size_t B>

@@ -101,7 +101,7 @@ struct dae_solution : energy_terms<T> {
   static constexpr int internal_slot() {
     constexpr int c = S::index_of(Component.view());
     if constexpr (c < 0) {
-      (void)sizeof(diagnostic::no_component_of_this_name<member<Component>,
+      (void)sizeof(diagnostic::no_component_of_this_name<diagnostic::member<Component>,
                                                           diagnostic::suggest<S::table.names, Component>>);
       return -1;
     } else {
@@ -112,7 +112,7 @@ struct dae_solution : energy_terms<T> {
         return -1;
       }();
       if constexpr (k < 0) {
-        (void)sizeof(diagnostic::no_internal_of_this_name<member<Component>, member<Variable>,
+        (void)sizeof(diagnostic::no_internal_of_this_name<diagnostic::member<Component>, diagnostic::member<Variable>,
                                                           diagnostic::suggest<detail::internal_names<C>, Variable>>);
         return -1;
       } else {

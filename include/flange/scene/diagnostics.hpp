@@ -14,6 +14,10 @@
 
 namespace flange {
 
+/// The tags the messages' template arguments are made of, out of the way of
+/// a user's own names (using namespace flange brings none of them in).
+namespace diagnostic {
+
 template <int N> struct equations_declared {};
 template <int N> struct equations_needed {};
 template <int N> struct unknowns {};
@@ -22,8 +26,6 @@ template <int N> struct rates {};
 template <class... Joints> struct cut_joints {};
 template <int N> struct state_size_given {};
 template <int N> struct state_size_needed {};
-
-namespace diagnostic {
 
 /// The valid name closest to a misspelt one (shown by the compiler).
 template <fixed_string Name>

@@ -28,7 +28,7 @@ namespace detail {
 /// scene's own check pass, so nothing else fails on top of it.
 template <class J, fixed_string Name>
 constexpr bool lacks() {
-  (void)sizeof(diagnostic::joint_lacks_member<J, member<Name>>);
+  (void)sizeof(diagnostic::joint_lacks_member<J, diagnostic::member<Name>>);
   return true;
 }
 

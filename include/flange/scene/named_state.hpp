@@ -9,7 +9,7 @@
 // A name that is not a joint of the scene is one error whose instantiation
 // line lists the valid names:
 //
-//   In instantiation of 'struct flange::diagnostic::no_joint_named<flange::member<"elbw">,
+//   In instantiation of 'struct flange::diagnostic::no_joint_named<flange::diagnostic::member<"elbw">,
 //       flange::diagnostic::did_you_mean<"elbow">, flange::diagnostic::joints<"shoulder", "elbow">>'
 #pragma once
 #include <array>
@@ -82,11 +82,11 @@ template <class S, fixed_string Name>
 constexpr int joint_named() {
   constexpr int c = S::index_of(Name.view());
   if constexpr (c >= 0 && S::tree.cut_of[c < 0 ? 0 : c] >= 0) {
-    (void)sizeof(diagnostic::joint_is_cut<member<Name>>);
+    (void)sizeof(diagnostic::joint_is_cut<diagnostic::member<Name>>);
     return -1;
   } else if constexpr (c < 0 || S::tree.q_offset[c < 0 ? 0 : c] < 0) {
     (void)sizeof(
-        diagnostic::no_joint_named<member<Name>, diagnostic::suggest<joint_name_table<S>, Name>, joint_names<S>>);
+        diagnostic::no_joint_named<diagnostic::member<Name>, diagnostic::suggest<joint_name_table<S>, Name>, joint_names<S>>);
     return -1;
   } else {
     return c;

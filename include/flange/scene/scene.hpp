@@ -164,7 +164,7 @@ class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
       constexpr int k = unconnected_frame(C);
       if constexpr (k >= 0)
         (void)sizeof(diagnostic::frame_connected_to_nothing<
-                     Comp, member<fixed_string<Comp::frames[k].size() + 1>(Comp::frames[k])>>);
+                     Comp, diagnostic::member<fixed_string<Comp::frames[k].size() + 1>(Comp::frames[k])>>);
       else (void)sizeof(Diag<Comp>);
     }
     return true;
@@ -247,8 +247,8 @@ class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
   static constexpr bool report_unbalanced() {
     if constexpr (I >= 0) {
       using C = component_type<I>;
-      (void)sizeof(diagnostic::unbalanced_component<C, equations_declared<detail::equations_of<C>()>,
-                                                    equations_needed<detail::needed_equations<C>()>>);
+      (void)sizeof(diagnostic::unbalanced_component<C, diagnostic::equations_declared<detail::equations_of<C>()>,
+                                                    diagnostic::equations_needed<detail::needed_equations<C>()>>);
     }
     return true;
   }
@@ -265,7 +265,7 @@ class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
   static_assert(report_unbalanced<first_unbalanced()>());
   static_assert((detail::report<(first_unbalanced() < 0 && n_equations != n_unknowns) ? 0 : -1,
                                 diagnostic::unbalanced_scene,
-                                detail::type_list<equations_declared<n_equations>, unknowns<n_unknowns>>>()));
+                                detail::type_list<diagnostic::equations_declared<n_equations>, diagnostic::unknowns<n_unknowns>>>()));
 
   // ---------------------------------------------------------- layout
   /// Length of the flattened variable vector y: every frame's r, R (stored as
@@ -341,7 +341,7 @@ class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
   static void require_state_size(const State& x) {
     constexpr int n = detail::static_size<State>();
     static_assert(detail::report<(n >= 0 && n != n_state) ? 0 : -1, diagnostic::wrong_state_size,
-                                 detail::type_list<state_size_given<n>, state_size_needed<n_state>>>());
+                                 detail::type_list<diagnostic::state_size_given<n>, diagnostic::state_size_needed<n_state>>>());
     if constexpr (n < 0) {
       if (static_cast<std::size_t>(x.size()) != std::size_t(n_state)) [[unlikely]]
         wrong_state_size(static_cast<std::size_t>(x.size()));

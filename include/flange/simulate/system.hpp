@@ -62,11 +62,11 @@ class System : public S {
   static constexpr bool report_overconstrained() {
     if constexpr (S::topology.ok() && detail::n_constraints<S>() > S::n_v) {
       constexpr auto cut_types = []<int... K>(std::integer_sequence<int, K...>) {
-        return cut_joints<typename detail::cut_info<S, K>::joint_type...>{};
+        return diagnostic::cut_joints<typename detail::cut_info<S, K>::joint_type...>{};
       }(std::make_integer_sequence<int, S::tree.n_cuts>{});
       (void)sizeof(diagnostic::loop_overconstrained<
-                   detail::type_list<constraints<detail::n_constraints<S>()>,
-                                     rates<S::n_v>, std::remove_const_t<decltype(cut_types)>>>);
+                   detail::type_list<diagnostic::constraints<detail::n_constraints<S>()>,
+                                     diagnostic::rates<S::n_v>, std::remove_const_t<decltype(cut_types)>>>);
     }
     return true;
   }
@@ -200,7 +200,7 @@ typename S::state_type initial_state(const S& scene,
   if constexpr (twice >= 0) {
     constexpr std::array<std::string_view, sizeof...(Names)> names{Names.view()...};
     (void)sizeof(diagnostic::joint_named_twice<
-                 member<fixed_string<names[twice].size() + 1>(names[twice])>, void>);
+                 diagnostic::member<fixed_string<names[twice].size() + 1>(names[twice])>, void>);
   }
   auto x = neutral_state(scene);
   (detail::write_joint<S, typename S::state_type, detail::named_joint<S, Names>::index>(scene, x, values), ...);
