@@ -31,6 +31,7 @@
 #include "flange/dynamics/articulated_body.hpp"
 #include "flange/dynamics/algorithm.hpp"
 #include "flange/dynamics/recover.hpp"
+#include "flange/dynamics/momentum.hpp"
 #include "flange/simulate/system.hpp"
 #include "flange/models/paper.hpp"
 #include "flange/models/chain.hpp"

@@ -76,6 +76,24 @@ energy_terms<T> energy_of(const S& scene, const T& t, const JS& js, const T* q, 
   return e;
 }
 
+/// A state's coordinates, rates, and every frame's pose and velocity: the
+/// pose pass alone (no dynamics), for energy() and momentum().
+template <class S, class T>
+struct frames_at_state {
+  std::array<T, S::n_q> q;
+  std::array<T, S::n_v> v;
+  std::array<frame_kinematics<T>, S::n_frames> frames;
+  template <class State>
+  frames_at_state(const S& scene, const State& x) {
+    S::require_state_size(x);
+    for (int i = 0; i < S::n_q; ++i) q[i] = x[i];
+    for (int i = 0; i < S::n_v; ++i) v[i] = x[S::n_q + i];
+    const auto motions = link_motions<spatial_algebra, T, true>(scene, q.data());
+    const auto lk = link_poses<S>(motions, v.data());
+    for (int f = 0; f < S::n_frames; ++f) frame_pose_and_velocity(scene, lk, f, frames[f]);
+  }
+};
+
 }  // namespace detail
 
 /// The energy at time t and state x = (q, v): the pose pass and each body's
@@ -84,16 +102,8 @@ energy_terms<T> energy_of(const S& scene, const T& t, const JS& js, const T* q, 
 template <class S, class T = double, class State>
   requires(!std::is_integral_v<T>)
 [[nodiscard]] energy_terms<T> energy(const S& scene, const T& t, const State& x) {
-  S::require_state_size(x);
-  std::array<T, S::n_q> q;
-  std::array<T, S::n_v> v;
-  for (int i = 0; i < S::n_q; ++i) q[i] = x[i];
-  for (int i = 0; i < S::n_v; ++i) v[i] = x[S::n_q + i];
-  const auto motions = detail::link_motions<spatial_algebra, T, true>(scene, q.data());
-  const auto lk = detail::link_poses<S>(motions, v.data());
-  std::array<frame_kinematics<T>, S::n_frames> frames;
-  for (int f = 0; f < S::n_frames; ++f) detail::frame_pose_and_velocity(scene, lk, f, frames[f]);
-  return detail::energy_of(scene, t, state_view<S>(q.data(), v.data()), q.data(), frames.data());
+  const detail::frames_at_state<S, T> k(scene, x);
+  return detail::energy_of(scene, t, state_view<S>(k.q.data(), k.v.data()), k.q.data(), k.frames.data());
 }
 
 /// energy(scene, 0, x): an integral time is a time in seconds.
