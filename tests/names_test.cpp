@@ -124,6 +124,33 @@ TEST_CASE("a quaternion joint left out of initial_state is the identity, not zer
   CHECK(x[S::q_offset("hinge")] == 0.3);
 }
 
+TEST_CASE("get_joint reads back what set_joint wrote, for every kind of state") {
+  const auto s = scene(World<"world">({.g = {0, 0, 0}}), FreeMotion<"free">(), Revolute<"hinge", axis::z>(),
+                       Spherical<"ball">(), Universal<"cardan">({.n_a = {1, 0, 0}, .n_b = {0, 1, 0}}),
+                       Body<"a">({.m = 1, .J = Mat3d::Identity()}), Body<"b">({.m = 1, .J = Mat3d::Identity()}),
+                       Body<"c">({.m = 1, .J = Mat3d::Identity()}), Body<"d">({.m = 1, .J = Mat3d::Identity()}),
+                       connect<"world.frame_b", "free.frame_a">, connect<"free.frame_b", "a.frame_a">,
+                       connect<"a.frame_a", "hinge.frame_a">, connect<"hinge.frame_b", "b.frame_a">,
+                       connect<"b.frame_a", "ball.frame_a">, connect<"ball.frame_b", "c.frame_a">,
+                       connect<"c.frame_a", "cardan.frame_a">, connect<"cardan.frame_b", "d.frame_a">);
+  const Mat3d R = orientation::cardan(0.3, -0.2, 0.5).R, Rb = orientation::rpy(0.1, 0.7, -0.4).R;
+  const auto x = initial_state<"free", "hinge", "ball", "cardan">(
+      s, {.r = {1, 2, 3}, .v = {0.5, -1, 2}, .R = orientation::matrix(R), .w = {1, -2, 0.5}}, {.q = 0.3, .v = -4},
+      {.R = orientation::matrix(Rb), .w = {0.1, 0.2, 0.3}}, {.q = {0.4, -0.6}, .v = {7, 8}});
+  const auto f = get_joint<"free">(s, x);
+  CHECK(f.r == Vec3d(1, 2, 3));
+  CHECK(f.v == Vec3d(0.5, -1, 2));
+  CHECK((f.R.R - R).cwiseAbs().maxCoeff() < 1e-15);  // through the unit quaternion
+  CHECK(f.w == Vec3d(1, -2, 0.5));
+  const auto h = get_joint<"hinge">(s, x);
+  CHECK((h.q == 0.3 && h.v == -4));
+  const auto b = get_joint<"ball">(s, x);
+  CHECK((b.R.R - Rb).cwiseAbs().maxCoeff() < 1e-15);
+  CHECK(b.w == Vec3d(0.1, 0.2, 0.3));
+  const auto u = get_joint<"cardan">(s, x);
+  CHECK((u.q[0] == 0.4 && u.q[1] == -0.6 && u.v[0] == 7 && u.v[1] == 8));
+}
+
 TEST_CASE("using namespace flange leaves a user's constraints(), rates() and member unambiguous") {
   CHECK(constraints() + rates() + member{}.id == 12);
 }

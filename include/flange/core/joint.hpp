@@ -20,8 +20,9 @@
 //   planar_normal(), moves_in_plane(K)  what planar arithmetic needs to know
 //
 // and optionally:
-//   state, write_state(s, q, v)  the state set by hand (set_joint); a plain
-//                                joint's default is {.q, .v}
+//   state, write_state(s, q, v), state_from(q, v)  the state set by hand
+//                                (set_joint) and read back (get_joint); a
+//                                plain joint's default is {.q, .v}
 //   quaternion_at = k            a unit quaternion in q from q[k]: it is kept
 //                                at unit norm and checked (normalize_joint,
 //                                check_joint_coordinates below); normalize(q)
@@ -331,6 +332,27 @@ void write_joint_state(const J& j, const joint_state_t<J>& s, double* q, double*
       q[i] = at(s.q, i);
       v[i] = at(s.v, i);
     }
+  }
+}
+
+/// A joint's state in its own terms at (q, v), the inverse of
+/// write_joint_state: the joint's state_from(q, v), or a plain joint's
+/// coordinates and rates.
+template <class J>
+joint_state_t<J> read_joint_value(const J& j, const double* q, const double* v) {
+  if constexpr (requires { j.state_from(q, v); }) {
+    return j.state_from(q, v);
+  } else {
+    static_assert(plain_joint<J>(), "flange: a joint that is not plain (core/joint.hpp: plain_joint) states its own "
+                                    "state_from(q, v), the inverse of its write_state");
+    joint_state_t<J> s;
+    if constexpr (J::nq == 1) {
+      s.q = q[0];
+      s.v = v[0];
+    } else {
+      for (int i = 0; i < J::nq; ++i) s.q[i] = q[i], s.v[i] = v[i];
+    }
+    return s;
   }
 }
 

@@ -132,6 +132,9 @@ class FreeMotion {
     for (int i = 0; i < 3; ++i) q[i] = s.r(i), v[i] = s.v(i), v[3 + i] = s.w(i);
     quaternion::from_rotation(s.R.R, q + 3);
   }
+  [[nodiscard]] state state_from(const double* q, const double* v) const {
+    return {Vec3d(q[0], q[1], q[2]), Vec3d(v[0], v[1], v[2]), {quaternion::to_rotation(q + 3)}, Vec3d(v[3], v[4], v[5])};
+  }
 
   static constexpr auto r_rel = internal_<2, 0, expr::var_kind::vec>;
   static constexpr auto R_rel = internal_<2, 1, expr::var_kind::rot>;

@@ -128,6 +128,9 @@ class Spherical {
     quaternion::from_rotation(s.R.R, q);
     for (int i = 0; i < 3; ++i) v[i] = s.w(i);
   }
+  [[nodiscard]] state state_from(const double* q, const double* v) const {
+    return {{quaternion::to_rotation(q)}, Vec3d(v[0], v[1], v[2])};
+  }
 
   static constexpr auto R_rel = internal_<2, 0, expr::var_kind::rot>;
 

@@ -180,6 +180,22 @@ void set_joint(const S& scene, State& x, const joint_state_t<typename detail::na
   detail::write_joint<S, State, detail::named_joint<S, Name>::index>(scene, x, value);
 }
 
+/// The named joint's state in its own terms, read from x: what set_joint
+/// writes (Revolute: {.q, .v}; Spherical: {.R, .w}; FreeMotion: {.r, .v, .R,
+/// .w}, the quaternion as a rotation matrix; Universal, Cylindrical, Planar:
+/// {.q = {…}, .v = {…}}). The name is checked at compile time.
+template <fixed_string Name, class S, class State>
+[[nodiscard]] joint_state_t<typename detail::named_joint<S, Name>::type> get_joint(const S& scene, const State& x) {
+  S::require_state_size(x);
+  constexpr int C = detail::named_joint<S, Name>::index;
+  using J = typename S::template component_type<C>;
+  std::array<double, J::nq> q;
+  std::array<double, J::nv> v;
+  for (int i = 0; i < J::nq; ++i) q[i] = x[S::tree.q_offset[C] + i];
+  for (int i = 0; i < J::nv; ++i) v[i] = x[S::n_q + S::tree.v_offset[C] + i];
+  return read_joint_value(scene.template component<C>(), q.data(), v.data());
+}
+
 /// The state with the named joints set and every other joint at its neutral
 /// configuration and at rest:
 ///
