@@ -5,6 +5,9 @@
 #pragma once
 #include <tinyxml2.h>
 
+#include <flange/core/component.hpp>
+
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -141,6 +144,14 @@ inline std::string required_name(const std::string& file, const tinyxml2::XMLEle
 /// Reads and checks the URDF file `file` (its text in `xml`).
 inline urdf_robot parse(const std::string& file, const std::string& xml) {
   using namespace detail;
+  // A xacro file (macros, ${…} expressions) is not a URDF yet.
+  for (const char* mark : {"${", "xacro:"})
+    if (const auto at = xml.find(mark); at != std::string::npos) {
+      const auto line = 1 + std::count(xml.begin(), xml.begin() + static_cast<std::ptrdiff_t>(at), '\n');
+      throw urdf_error(file + ':' + std::to_string(line) + ": \"" + mark +
+                       "\": this is a xacro file, not a URDF; run xacro first (xacro robot.urdf.xacro > robot.urdf) "
+                       "and import the URDF it writes");
+    }
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
     std::ostringstream s;
@@ -174,6 +185,15 @@ inline urdf_robot parse(const std::string& file, const std::string& xml) {
       l.in.iyy = number(file, i, "iyy", &zero);
       l.in.iyz = number(file, i, "iyz", &zero);
       l.in.izz = number(file, i, "izz", &zero);
+      // Refused here, with the file and line, as MuJoCo refuses it at load
+      // (the scene would refuse it only when made).
+      flange::Mat3d I;
+      I << l.in.ixx, l.in.ixy, l.in.ixz, l.in.ixy, l.in.iyy, l.in.iyz, l.in.ixz, l.in.iyz, l.in.izz;
+      try {
+        flange::detail::require_inertia(l.name, "link", I);
+      } catch (const flange::parameter_error& err) {
+        fail(file, i, err.what());
+      }
     }
     link_index[l.name] = int(r.links.size());
     r.links.push_back(std::move(l));
@@ -274,12 +294,16 @@ inline urdf_robot parse(const std::string& file, const std::string& xml) {
       throw urdf_error(file + ':' + std::to_string(r.joints[r.links[i].parent_joint].line) + ": <joint name=\"" +
                        r.joints[r.links[i].parent_joint].name + "\">: link \"" + r.links[i].name +
                        "\" is on a cycle of joints, not reached from the root \"" + r.links[r.root].name + "\"");
-  // Limits, and friction (regularised in flange), are notes: never silent.
-  for (const auto& j : r.joints) {
+  // Limits (one line for all), and friction (regularised in flange), are notes: never silent.
+  std::string limited;
+  int n_limited = 0;
+  for (const auto& j : r.joints)
     if (j.has_limit && (j.kind == joint_kind::revolute || j.kind == joint_kind::prismatic))
-      r.notes.push_back(file + ':' + std::to_string(j.line) + ": <joint name=\"" + j.name +
-                        "\">: its position limits [" + std::to_string(j.lower) + ", " + std::to_string(j.upper) +
-                        "] and effort and velocity limits are not modelled (flange has no joint-limit law)");
+      limited += std::string(n_limited++ ? ", " : "") + "\"" + j.name + "\" (line " + std::to_string(j.line) + ")";
+  if (n_limited > 0)
+    r.notes.push_back(file + ": " + std::to_string(n_limited) + " joint(s) have position, effort and velocity "
+                      "limits, not modelled (flange has no joint-limit law): " + limited);
+  for (const auto& j : r.joints) {
     if (j.friction > 0)
       r.notes.push_back(file + ':' + std::to_string(j.line) + ": <joint name=\"" + j.name +
                         "\">: its Coulomb friction " + std::to_string(j.friction) +
