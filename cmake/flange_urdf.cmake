@@ -1,4 +1,4 @@
-# flange_urdf_scene(<target> <robot.urdf> [NAMESPACE <ns>])
+# flange_urdf_scene(<target> <robot.urdf> [NAMESPACE <ns>] [FLOATING_BASE])
 #
 # Runs flange-urdf on the URDF file at build time (again whenever the file
 # changes) and makes the generated header, <ns>.hpp, includable by <target>:
@@ -6,9 +6,15 @@
 #   flange_urdf_scene(my_app robots/arm.urdf NAMESPACE arm)
 #   // my_app.cpp:  #include "arm.hpp"   auto robot = arm::make_scene();
 #
-# <ns> defaults to the file's name without its extension.
+# <ns> defaults to the file's name without its extension. FLOATING_BASE lets
+# the root link move freely where the URDF has no floating joint (flange-urdf
+# --floating-base).
 function(flange_urdf_scene target urdf)
-  cmake_parse_arguments(FU "" "NAMESPACE" "" ${ARGN})
+  cmake_parse_arguments(FU "FLOATING_BASE" "NAMESPACE" "" ${ARGN})
+  set(extra "")
+  if(FU_FLOATING_BASE)
+    set(extra --floating-base)
+  endif()
   get_filename_component(urdf_path "${urdf}" ABSOLUTE)
   if(NOT FU_NAMESPACE)
     get_filename_component(FU_NAMESPACE "${urdf}" NAME_WE)
@@ -18,7 +24,7 @@ function(flange_urdf_scene target urdf)
   add_custom_command(
     OUTPUT "${header}"
     COMMAND ${CMAKE_COMMAND} -E make_directory "${dir}"
-    COMMAND $<TARGET_FILE:flange::urdf> "${urdf_path}" --namespace ${FU_NAMESPACE} -o "${header}"
+    COMMAND $<TARGET_FILE:flange::urdf> "${urdf_path}" --namespace ${FU_NAMESPACE} ${extra} -o "${header}"
     DEPENDS "${urdf_path}" $<TARGET_FILE:flange::urdf>
     COMMENT "flange-urdf ${urdf} -> ${FU_NAMESPACE}.hpp"
     VERBATIM)

@@ -34,6 +34,7 @@
 
 #include "arm6.hpp"
 #include "floating_legs.hpp"
+#include "legs_fixed_root.hpp"
 #include "two_link_planar.hpp"
 
 namespace {
@@ -255,4 +256,57 @@ TEST_CASE("a 6-joint arm with turned origins, skew axes and a fixed tool: flange
 TEST_CASE("a floating base with two legs from URDF: flange and MuJoCo agree") {
   const auto robot = floating_legs::make_scene();
   check_against_mujoco(robot, FLANGE_URDF_DIR "/floating_legs.urdf");
+}
+
+TEST_CASE("a floating base's state is its world pose, as MuJoCo's qpos: the centre of mass agrees, and --floating-base "
+          "gives the same robot") {
+  // The floating joint's <origin> is turned and raised (floating_legs.urdf):
+  // MuJoCo's qpos is the trunk's world pose, and so is flange's state.
+  const auto robot = floating_legs::make_scene();
+  using S = decltype(robot);
+  mujoco_model mj(FLANGE_URDF_DIR "/floating_legs.urdf");
+  mjModel* m = mj.m;
+  mjData* d = mj.d;
+  // The URDF's home pose: MuJoCo's qpos0, flange's home_state.
+  for (int i = 0; i < m->nq; ++i) d->qpos[i] = m->qpos0[i];
+  for (int i = 0; i < m->nv; ++i) d->qvel[i] = 0;
+  const auto home = from_mujoco<S>(m, d);
+  const auto mine = floating_legs::home_state(robot);
+  for (int i = 0; i < 3; ++i) CHECK(std::abs(home[i] - mine[i]) < 1e-15);
+  double dot = 0;
+  for (int i = 3; i < 7; ++i) dot += home[i] * mine[i];
+  CHECK(std::abs(std::abs(dot) - 1) < 1e-15);  // one orientation (q and −q are one)
+  CHECK(mine[2] == 0.6);
+  // The centre of mass at random states: MuJoCo's subtree_com of the world
+  // body against flange's bodies at their recovered frames.
+  const auto bs = bodies(robot);
+  double total = 0;
+  for (const auto& b : bs) total += b.m;
+  const auto free_root = legs_fixed_root::make_scene();
+  using F = decltype(free_root);
+  static_assert(F::n_q == S::n_q && F::n_v == S::n_v);
+  static_assert(F::q_offset<"floating_base">() == S::q_offset<"base">());
+  std::mt19937 rng(11);
+  double worst_com = 0, worst_twin = 0;
+  for (int k = 0; k < 50; ++k) {
+    random_state(m, d, rng);
+    mj_forward(m, d);
+    const auto x = from_mujoco<S>(m, d);
+    const auto sol = recover(robot, 0.0, x);
+    flange::Vec3d com = flange::Vec3d::Zero();
+    for (const auto& b : bs) {
+      const auto& f = sol.frame(std::string(b.name) + ".frame_a");
+      com += b.m * (f.r + f.R.transpose() * b.r_cm);
+    }
+    com /= total;
+    worst_com = std::max(worst_com, (com - flange::Vec3d(d->subtree_com[0], d->subtree_com[1], d->subtree_com[2])).norm());
+    // The twin written without a floating joint, imported with --floating-base.
+    typename S::state_type dx, dy;
+    robot(x, dx, 0.0);
+    free_root(x, dy, 0.0);
+    for (int i = 0; i < S::n_state; ++i) worst_twin = std::max(worst_twin, std::abs(dx[i] - dy[i]) / (1 + std::abs(dx[i])));
+  }
+  WARN("centre of mass, flange against MuJoCo: " << worst_com << " m; the --floating-base twin: " << worst_twin);
+  CHECK(worst_com < 1e-14);
+  CHECK(worst_twin < 1e-13);
 }

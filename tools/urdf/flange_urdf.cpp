@@ -1,6 +1,10 @@
 // flange-urdf: a URDF robot as a flange scene header.
 //
-//   flange-urdf robot.urdf [--namespace NAME] [-o robot_scene.hpp]
+//   flange-urdf robot.urdf [--namespace NAME] [--floating-base] [-o robot_scene.hpp]
+//
+// --floating-base lets the root link move freely (a FreeMotion from the
+// World) where the URDF has no floating joint; without it such a root is
+// welded to the World, and a note says so.
 //
 // Writes the header (to stdout without -o); prints what flange does not model
 // (limits, mimic joints, transmissions, …) to stderr. A bad URDF (an unknown
@@ -15,18 +19,20 @@
 
 int main(int argc, char** argv) {
   std::string in, out, ns;
+  flange_urdf::generate_options options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-o" && i + 1 < argc) out = argv[++i];
+    else if (a == "--floating-base") options.floating_base = true;
     else if (a == "--namespace" && i + 1 < argc) ns = argv[++i];
     else if (!a.empty() && a[0] != '-' && in.empty()) in = a;
     else {
-      std::cerr << "usage: flange-urdf robot.urdf [--namespace NAME] [-o FILE]\n";
+      std::cerr << "usage: flange-urdf robot.urdf [--namespace NAME] [--floating-base] [-o FILE]\n";
       return 2;
     }
   }
   if (in.empty()) {
-    std::cerr << "usage: flange-urdf robot.urdf [--namespace NAME] [-o FILE]\n";
+    std::cerr << "usage: flange-urdf robot.urdf [--namespace NAME] [--floating-base] [-o FILE]\n";
     return 2;
   }
   std::ifstream f(in);
@@ -45,7 +51,7 @@ int main(int argc, char** argv) {
       if (ns.empty() || std::isdigit(static_cast<unsigned char>(ns[0]))) ns = "robot_" + ns;
     }
     std::ostringstream header;
-    const auto notes = flange_urdf::generate(robot, in, ns, header);
+    const auto notes = flange_urdf::generate(robot, in, ns, header, options);
     for (const auto& n : notes) std::cerr << "flange-urdf: note: " << n << '\n';
     if (out.empty()) {
       std::cout << header.str();

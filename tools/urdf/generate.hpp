@@ -22,6 +22,7 @@
 #include <cctype>
 #include <cstdio>
 #include <map>
+#include <utility>
 #include <ostream>
 #include <set>
 #include <string>
@@ -61,6 +62,9 @@ struct writer {
   std::vector<std::string> components, connections;
   std::set<std::string> names{"world"};
   std::vector<std::string> link_frame;
+  std::vector<std::string> renamed;  ///< names with characters made '_'
+  /// Each floating joint's component name and its <origin>: the pose home_state() sets.
+  std::vector<std::pair<std::string, origin>> homes;
 
   /// A component name not yet used: `wanted` with every character flange's
   /// names cannot hold as is ('.', which separates a component from its frame,
@@ -78,7 +82,6 @@ struct writer {
     names.insert(n);
     return n;
   }
-  std::vector<std::string> renamed;  ///< names with characters made '_'
 
 
   /// Mass in the subtree of link l (through every joint).
@@ -109,7 +112,10 @@ struct writer {
   void joint_of(int ji, std::vector<std::string>& notes) {
     const joint& j = r.joints[ji];
     std::string at = link_frame[j.parent_link];
-    if (j.at.translates() || j.at.rotates()) {
+    // A floating joint's state is its child's pose in the parent link's frame
+    // (the world's, for a base), as MuJoCo's qpos: its <origin> is not a
+    // component but the pose home_state() sets.
+    if (j.kind != joint_kind::floating && (j.at.translates() || j.at.rotates())) {
       const std::string o = unique(j.name + "_origin", "_", notes);
       if (j.at.rotates())
         components.push_back("FixedRotation<\"" + o + "\">({.r = " + vec(j.at.xyz) + ", .R = orientation::rpy(" +
@@ -157,7 +163,10 @@ struct writer {
         else c = "Prismatic<\"" + n + "\", " + axis + ", " + force + ">({" + n_param + force_init + "})";
         break;
       }
-      case joint_kind::floating: c = "FreeMotion<\"" + n + "\">{}"; break;
+      case joint_kind::floating:
+        c = "FreeMotion<\"" + n + "\">{}";
+        homes.emplace_back(n, j.at);
+        break;
       case joint_kind::planar: {
         // The plane's first direction: a coordinate axis not along the normal.
         const vec3 first = std::abs(j.axis[0]) < 0.9 * std::sqrt(j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] +
@@ -194,16 +203,41 @@ struct writer {
 
 }  // namespace detail
 
+/// How a robot is imported.
+struct generate_options {
+  /// The root link moves freely (a FreeMotion "floating_base" from the World)
+  /// where the URDF welds it to the World (no floating joint at the root).
+  bool floating_base = false;
+};
+
 /// Writes the scene header for robot r (read from `file`) into out, in
 /// namespace ns. Returns the notes (also written into the header).
 inline std::vector<std::string> generate(const urdf_robot& r, const std::string& file, const std::string& ns,
-                                         std::ostream& out) {
+                                         std::ostream& out, const generate_options& o = {}) {
   std::vector<std::string> notes = r.notes, driven_notes;
-  detail::writer w{r, file, false, {}, {}, {}, std::vector<std::string>(r.links.size()), {}};
-  detail::writer wd{r, file, true, {}, {}, {}, std::vector<std::string>(r.links.size()), {}};
+  detail::writer w{r, file, false, {}, {}, {}, std::vector<std::string>(r.links.size()), {}, {}};
+  detail::writer wd{r, file, true, {}, {}, {}, std::vector<std::string>(r.links.size()), {}, {}};
   w.link_frame[r.root] = wd.link_frame[r.root] = "world.frame_b";
-  if (r.links[r.root].name == "world" && r.links[r.root].has_inertial)
+  const std::string root = "\"" + r.links[r.root].name + "\"";
+  const bool root_has_mass = r.links[r.root].has_inertial && r.links[r.root].in.mass > 0;
+  if (o.floating_base) {
+    if (!(w.subtree_mass(r.root) > 0))
+      throw urdf_error(file + ": --floating-base: the robot has no mass to float");
+    for (auto* x : {&w, &wd}) {
+      const std::string n = x->unique("floating_base", "_", driven_notes);
+      x->components.push_back("FreeMotion<\"" + n + "\">{}");
+      x->connections.push_back("connect<\"world.frame_b\", \"" + n + ".frame_a\">");
+      x->link_frame[r.root] = n + ".frame_b";
+      x->homes.emplace_back(n, origin{});
+    }
+    notes.push_back("--floating-base: the root link " + root + " moves freely (FreeMotion \"floating_base\"; its state "
+                    "is the link's pose and velocity in the world)");
+  } else if (r.links[r.root].name == "world" && r.links[r.root].has_inertial) {
     notes.push_back("the root link is named \"world\" but has an inertial: it is welded to the World");
+  } else if (root_has_mass) {
+    notes.push_back("the root link " + root + " has mass and no floating joint: it is welded to the World (a fixed "
+                    "base); --floating-base lets it move freely");
+  }
   w.walk(r.root, notes);
   wd.walk(r.root, driven_notes);
   if (!w.renamed.empty()) {
@@ -234,8 +268,16 @@ inline std::vector<std::string> generate(const urdf_robot& r, const std::string&
       << "  return flange::scene(\n      World<\"world\">({.g = {0, 0, -9.81}})";
   for (const auto& c : wd.components) out << ",\n      " << c;
   for (const auto& c : wd.connections) out << ",\n      " << c;
-  out << ");\n}\n\n/// The type of the undriven scene.\nusing scene_type = decltype(make_scene());\n\n}  // namespace "
-      << ns << '\n';
+  out << ");\n}\n\n/// The type of the undriven scene.\nusing scene_type = decltype(make_scene());\n\n"
+      << "/// The state the URDF draws: every joint at zero and at rest, each floating\n"
+      << "/// joint at its <origin> (its state is its child's pose in the parent link's frame).\n"
+      << "template <class S>\ninline typename S::state_type home_state(const S& scene) {\n"
+      << "  auto x = flange::neutral_state(scene);\n";
+  for (const auto& [n, at] : w.homes)
+    out << "  flange::set_joint<\"" << n << "\">(scene, x, {.r = " << detail::vec(at.xyz)
+        << ", .v = {}, .R = flange::orientation::rpy(" << detail::num(at.rpy[0]) << ", " << detail::num(at.rpy[1])
+        << ", " << detail::num(at.rpy[2]) << "), .w = {}});\n";
+  out << "  return x;\n}\n\n}  // namespace " << ns << '\n';
   return notes;
 }
 
