@@ -255,7 +255,8 @@ inline std::vector<std::string> generate(const urdf_robot& r, const std::string&
     out << "//\n// Not modelled, or modelled differently (also printed by flange-urdf):\n";
     for (const auto& n : notes) out << "//   " << n << '\n';
   }
-  out << "#pragma once\n#include <flange/flange.hpp>\n\nnamespace " << ns << " {\n\n"
+  out << "#pragma once\n// The scene and its equations; integrating it needs <flange/flange.hpp> as well.\n"
+      << "#include <flange/equations_of_motion.hpp>\n\nnamespace " << ns << " {\n\n"
       << "/// The robot \"" << r.name << "\" as a flange scene (gravity −9.81 m/s² along z).\n"
       << "inline auto make_scene() {\n  using namespace flange;\n  return flange::scene(\n"
       << "      World<\"world\">({.g = {0, 0, -9.81}})";
