@@ -33,6 +33,7 @@
 #include <string>
 
 #include "arm6.hpp"
+#include "com_at_origin.hpp"
 #include "floating_legs.hpp"
 #include "legs_fixed_root.hpp"
 #include "two_link_planar.hpp"
@@ -171,6 +172,15 @@ double match_inertias(const S& scene, mjModel* m, mjData* d) {
       const double quat[4] = {q.w(), q.x(), q.y(), q.z()};
       for (int i = 0; i < 4; ++i) m->body_iquat[4 * b + i] = quat[i];
       for (int i = 0; i < 3; ++i) m->body_inertia[3 * b + i] = eig.eigenvalues()[i];
+      // MuJoCo skips iquat and ipos for a body whose inertial frame it found to
+      // be its own frame (body_sameframe, set at load: a centre of mass at the
+      // origin and the principal axes along the body's), and takes such a body
+      // as simple. The principal axes handed over here need not be the body's
+      // (Eigen orders the moments): say so, or MuJoCo reads the moments along
+      // the wrong axes (30 % off in q̈ for com_at_origin.urdf).
+      const bool same = c_mj.norm() == 0 && V.isIdentity(0);
+      m->body_sameframe[b] = same ? 1 : 0;
+      if (!same) m->body_simple[b] = 0;
     }
   });
   REQUIRE(matched > 0);
@@ -251,6 +261,11 @@ TEST_CASE("a 2-link planar arm from URDF: flange and MuJoCo give the same accele
 TEST_CASE("a 6-joint arm with turned origins, skew axes and a fixed tool: flange and MuJoCo agree") {
   const auto arm = arm6::make_scene();
   check_against_mujoco(arm, FLANGE_URDF_DIR "/arm6.urdf");
+}
+
+TEST_CASE("centres of mass at the link origins, principal moments out of order: flange and MuJoCo agree") {
+  const auto arm = com_at_origin::make_scene();
+  check_against_mujoco(arm, FLANGE_URDF_DIR "/com_at_origin.urdf");
 }
 
 TEST_CASE("a floating base with two legs from URDF: flange and MuJoCo agree") {
