@@ -392,41 +392,6 @@ struct aba_kinds {
   }
 };
 
-// What a unit's steps take from the records ws of the links (aba_kinds::records).
-
-/// A unit's step as the executor runs it: the link's own step on a link
-/// alone, its block form on R links in a row.
-template <class Step, int R>
-using unit_step = std::conditional_t<R == 1, Step, typename Step::template block<R>>;
-/// A unit's links L0 … L0 + R − 1 as its step takes them: a link alone by
-/// reference (its record, its motion), a block as pointers, first to last.
-template <class K, int L0, int R>
-struct unit_links {
-  using W = typename K::template element<typename K::records, L0 - 1>;
-  using Mo = typename K::template element<typename K::motions, L0 - 1>;
-  std::array<W*, R> w;
-  std::array<const Mo*, R> m;
-  FLANGE_INLINE unit_links(typename K::records& ws, const typename K::motions& motions)
-      : unit_links(ws, motions, std::make_integer_sequence<int, R>{}) {}
-  template <int... J>
-  FLANGE_INLINE unit_links(typename K::records& ws, const typename K::motions& motions, std::integer_sequence<int, J...>)
-      : w{&std::get<L0 - 1 + J>(ws)...}, m{&std::get<L0 - 1 + J>(motions)...} {}
-  FLANGE_INLINE decltype(auto) records() const {
-    if constexpr (R == 1) return static_cast<W&>(*w[0]);
-    else return w.data();
-  }
-  FLANGE_INLINE decltype(auto) motions() const {
-    if constexpr (R == 1) return static_cast<const Mo&>(*m[0]);
-    else return m.data();
-  }
-  /// A per-link value of the first link: by reference alone, its address in a block.
-  template <class X>
-  FLANGE_INLINE static decltype(auto) first(const X& x) {
-    if constexpr (R == 1) return (x);
-    else return &x;
-  }
-};
-
 /// What link L takes from its parent's record in ws: its ω (the World's is
 /// zero), its acceleration (the World's: base's, −g), and the record its
 /// step up adds its shares to (none for a root link, or one that frees every

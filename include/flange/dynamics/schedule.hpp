@@ -24,11 +24,13 @@
 //
 // The executor: for_units runs a step over the plan's units, parents first
 // or children first; walk runs a walk's steps depth first; run_step calls a
-// step inline or through its one shared copy. A step is always compiled into
+// step inline or through its one shared copy; unit_links hands a unit's
+// links to its step (a link alone, or a block's in a row). A step is always compiled into
 // the unit that runs it (FLANGE_INLINE); a unit is compiled into the pass or
 // split off, and a step shared, only here.
 #pragma once
 #include <array>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 
@@ -153,6 +155,41 @@ FLANGE_INLINE decltype(auto) run_step(Args&&... args) {
   if constexpr (Shared) return shared_step<Step, step_param<Args&&>...>(std::forward<Args>(args)...);
   else return Step::run(std::forward<Args>(args)...);
 }
+
+/// A unit's step as the executor runs it: the link's own step on a link
+/// alone, its block form on R links in a row.
+template <class Step, int R>
+using unit_step = std::conditional_t<R == 1, Step, typename Step::template block<R>>;
+/// A unit's links L0 … L0 + R − 1 as its step takes them, from a pass's
+/// records and motions (K::records, K::motions: tuples, link L at L − 1;
+/// K::element<X, I> their types): a link alone by reference (its record, its
+/// motion), a block as pointers, first to last.
+template <class K, int L0, int R>
+struct unit_links {
+  using W = typename K::template element<typename K::records, L0 - 1>;
+  using Mo = typename K::template element<typename K::motions, L0 - 1>;
+  std::array<W*, R> w;
+  std::array<const Mo*, R> m;
+  FLANGE_INLINE unit_links(typename K::records& ws, const typename K::motions& motions)
+      : unit_links(ws, motions, std::make_integer_sequence<int, R>{}) {}
+  template <int... J>
+  FLANGE_INLINE unit_links(typename K::records& ws, const typename K::motions& motions, std::integer_sequence<int, J...>)
+      : w{&std::get<L0 - 1 + J>(ws)...}, m{&std::get<L0 - 1 + J>(motions)...} {}
+  FLANGE_INLINE decltype(auto) records() const {
+    if constexpr (R == 1) return static_cast<W&>(*w[0]);
+    else return w.data();
+  }
+  FLANGE_INLINE decltype(auto) motions() const {
+    if constexpr (R == 1) return static_cast<const Mo&>(*m[0]);
+    else return m.data();
+  }
+  /// A per-link value of the first link: by reference alone, its address in a block.
+  template <class X>
+  FLANGE_INLINE static decltype(auto) first(const X& x) {
+    if constexpr (R == 1) return (x);
+    else return &x;
+  }
+};
 
 // ------------------------------------------------------------ the walk
 //
