@@ -3,6 +3,7 @@
 // closed form, the run to one end time, the four-bar's loop, and bad input.
 #include <cmath>
 #include <cstring>
+#include <random>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -55,6 +56,24 @@ TEST_CASE("a trajectory is the closed form at every requested time, and ends whe
   const auto back = simulate(s, x1, output_times(10.0, 0.0, 0.5), o);
   CHECK(back.t.back() == 0.0);
   CHECK(std::abs(back.x.back()[0] - 0.1) < 2 * bound);
+}
+
+TEST_CASE("every requested time is in the trajectory, the last one too, whatever t1 the run ends on") {
+  // The last step ends on t1 to round-off (t + (t1 − t) need not be t1):
+  // over many end times, none is left out.
+  const auto s = oscillator();
+  const auto x0 = initial_state<"slide">(s, {.q = 0.1});
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.1, 10.0);
+  for (int k = 0; k < 200; ++k) {
+    const double t1 = u(rng);
+    const auto times = output_times(0.0, t1, t1 / 3);
+    const auto tr = simulate(s, x0, times, {.tolerance = 1e-6});
+    REQUIRE(tr.size() == times.size());
+    CHECK(tr.t.back() == t1);
+    const auto x1 = simulate(s, x0, 0.0, t1, {.tolerance = 1e-6});
+    CHECK(std::memcmp(&tr.x.back(), &x1, sizeof x1) == 0);
+  }
 }
 
 TEST_CASE("a trajectory of a loop scene is on its loop at every sample, not only at the steps' ends") {

@@ -325,10 +325,14 @@ void write_joint_state(const J& j, const joint_state_t<J>& s, double* q, double*
       if constexpr (J::nq == 1) return a;
       else return a[static_cast<std::size_t>(i)];
     };
+    const auto check = [](const char* what, int i, double x) {
+      if (!std::isfinite(x))  // the message is built only for a number that fails
+        detail::require_finite(J::name.view(), J::type_name,
+                               J::nq == 1 ? std::string(what) : detail::concat(what, " ", i), x);
+    };
     for (int i = 0; i < J::nq; ++i) {
-      const std::string k = J::nq == 1 ? std::string() : detail::concat(" ", i);
-      detail::require_finite(J::name.view(), J::type_name, detail::concat("the initial coordinate", k), at(s.q, i));
-      detail::require_finite(J::name.view(), J::type_name, detail::concat("the initial rate", k), at(s.v, i));
+      check("the initial coordinate", i, at(s.q, i));
+      check("the initial rate", i, at(s.v, i));
       q[i] = at(s.q, i);
       v[i] = at(s.v, i);
     }

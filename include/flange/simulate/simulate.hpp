@@ -191,6 +191,12 @@ trajectory<typename S::state_type> simulate(const S& scene, const typename S::st
   detail::sample_times<typename S::state_type> watch{times, tr.t, tr.x};
   auto x = x0;
   tr.steps = detail::checked_run<Method>(scene, x, times.front(), times.back(), o, tr.rhs_evals, watch);
+  // The last step ends on t1 to round-off (t + (t1 − t) need not be t1): a
+  // time it stopped a few ulp short of is the end state's.
+  while (tr.t.size() < times.size()) {
+    tr.t.push_back(times[tr.t.size()]);
+    tr.x.push_back(x);
+  }
   return tr;
 }
 
