@@ -427,10 +427,13 @@ concept planar_info = requires {
   { J::moves_in_plane(0) } -> std::convertible_to<bool>;
 };
 template <class J>
-concept internals_io = requires(const J& j, const double* q, const double* v, double* o) {
-  j.write_internals(q, v, [](int, const auto&, const auto&) {});
-  requires plain_joint<J>() || requires { j.read_state([](int, bool) -> const double* { return nullptr; }, o, o); };
+concept reads_state = requires(const J& j, double* o) {
+  j.read_state([](int, bool) -> const double* { return nullptr; }, o, o);
 };
+template <class J>
+concept internals_io = requires(const J& j, const double* q, const double* v) {
+  j.write_internals(q, v, [](int, const auto&, const auto&) {});
+} && (plain_joint<J>() || reads_state<J>);
 }  // namespace joint_requirements
 
 template <class J>
