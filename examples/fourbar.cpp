@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   }
   const models::fourbar_params p;  // ground 1 m, crank 0.3 m, coupler 1 m, rocker 0.8 m
   const double omega = 4 * std::numbers::pi, gain = 5.0;
-  auto motor = [=](double, const auto& x) { return gain * (omega - qd<"crank_pivot">(x)); };
+  auto motor = [=](double, const auto& x) { return gain * (omega - v<"crank_pivot">(x)); };
   const auto fb = scene(World<"world">({.g = p.g}),                                                       //
                         revolute<"crank_pivot", axis::z>(motor), bar<"crank">(p.crank, p.m_crank),         //
                         Revolute<"crank_pin", axis::z>{}, bar<"coupler">(p.coupler, p.m_coupler),         //

@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   // at the target: it lifts the arm from hanging (φ = −90°) to φ = 45°.
   const double target = std::numbers::pi / 4, kp = 40.0, kd = 4.0;
   auto motor = [&](double, const joint_state<double>& x) {
-    const double Mz = kp * (target - x.q(0)) - kd * x.qd(0) + p.m * p.d * p.g * std::cos(target);
+    const double Mz = kp * (target - x.q(0)) - kd * x.v(0) + p.m * p.d * p.g * std::cos(target);
     return Vec3d(0, 0, Mz);
   };
 

@@ -23,7 +23,7 @@ constexpr pd_gains gains(std::string_view joint) {
 template <flange::fixed_string Name>
 inline auto pd = [](auto, const auto& x) {
   constexpr pd_gains g = gains(Name.view());
-  return g.kp * (g.target - flange::q<Name>(x)) - g.kd * flange::qd<Name>(x);
+  return g.kp * (g.target - flange::q<Name>(x)) - g.kd * flange::v<Name>(x);
 };
 
 inline auto make_scene() {

@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   auto pd = [](auto joint, auto, const auto& x) {
     constexpr auto name = decltype(joint)::name;
     constexpr spatial_arm::pd_gains g = spatial_arm::gains(name.view());
-    return g.kp * (g.target - q<name>(x)) - g.kd * qd<name>(x);
+    return g.kp * (g.target - q<name>(x)) - g.kd * v<name>(x);
   };
   const auto arm = spatial_arm_urdf::make_scene(pd);
   using Arm = decltype(arm);

@@ -50,7 +50,7 @@ TEST_CASE("a constant drive torque gives the paper's closed form, as a Torque el
 TEST_CASE("a PD drive τ(t, x) swings the arm up like the same controller in a Torque element") {
   const models::robot_arm_params p;
   const double target = 0.75 * std::numbers::pi - std::numbers::pi / 2;  // 135° from the downward vertical
-  auto pd = [target](auto, const auto& x) { return 30.0 * (target - x.q(0)) - 5.0 * x.qd(0); };
+  auto pd = [target](auto, const auto& x) { return 30.0 * (target - x.q(0)) - 5.0 * x.v(0); };
   auto pd_vec = [pd](auto t, const auto& x) {
     using T = decltype(x.q(0));
     return Eigen::Matrix<T, 3, 1>(T(0), T(0), pd(t, x));

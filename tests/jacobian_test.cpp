@@ -54,7 +54,7 @@ TEST_CASE("the dual-number Jacobian matches finite differences") {
   SECTION("robot arm under a generic PD law") {
     auto pd = [](auto t, const auto& x) {
       using std::sin;
-      return Eigen::Matrix<std::remove_cvref_t<decltype(t)>, 3, 1>(0, 0, -8.0 * (x.q(0) - sin(t)) - 1.5 * x.qd(0));
+      return Eigen::Matrix<std::remove_cvref_t<decltype(t)>, 3, 1>(0, 0, -8.0 * (x.q(0) - sin(t)) - 1.5 * x.v(0));
     };
     const auto arm = models::robot_arm(test::arm_params(rng), pd);
     for (int k = 0; k < 10; ++k)

@@ -97,3 +97,76 @@ TEST_CASE("a torque-free floating tree keeps its momentum, and under gravity p g
     CHECK((dp - Vec3d(0, 0, -M * g * t1)).norm() < 1e-8);  // measured: 2.6e-13
   }
 }
+
+namespace {
+/// The centre of mass of what joint C carries, in frame_a coordinates
+/// relative to frame_a's origin, at the coordinates of x.
+template <int C, class S, class State>
+Vec3d carried_cm_in_frame_a(const S& s, const State& x) {
+  const detail::frames_at_state<S, double> at(s, x);
+  const auto c = detail::momentum_of(s, at, [](int i) { return detail::carried_by<S, C>(i); });
+  const auto& a = at.frames[S::table.frame_base[C]];
+  return a.R * (c.first_moment / c.m - a.r);
+}
+/// Its velocity by central differences along q̇ (the derivative's first half).
+template <int C, class S>
+Vec3d carried_cm_velocity_fd(const S& s, const typename S::state_type& x) {
+  typename S::state_type dx, xp = x, xm = x;
+  s(x, dx, 0.0);
+  const double h = 1e-5;
+  for (int i = 0; i < S::n_q; ++i) xp[i] += h * dx[i], xm[i] -= h * dx[i];
+  return (carried_cm_in_frame_a<C>(s, xp) - carried_cm_in_frame_a<C>(s, xm)) / (2 * h);
+}
+}  // namespace
+
+TEST_CASE("a free body set by its centre-of-mass velocity moves its centre of mass so") {
+  const auto s = scene(World<"world">({.g = {0, 0, 0}}), FreeMotion<"fly">{},
+                       Body<"b", cm::offset>({.m = 2.0, .J = Vec3d(0.1, 0.2, 0.3).asDiagonal(), .r_cm = {0.3, -0.2, 0.1}}),
+                       connect<"world.frame_b", "fly.frame_a">, connect<"fly.frame_b", "b.frame_a">);
+  const Mat3d R = orientation::cardan(0.3, -0.2, 0.5).R;
+  const Vec3d w(1, -2, 0.5), v_cm(0.5, -1, 2), r_cm(0.3, -0.2, 0.1);
+  const auto x = initial_state<"fly">(s, {.r = {1, 2, 3}, .R = orientation::matrix(R), .w = w, .v_cm = v_cm});
+  // Closed form: frame_b's velocity is the centre of mass's less ω × (its offset), in world axes (Rᵀ).
+  const Vec3d v = get_joint<"fly">(s, x).v;
+  CHECK((v - (v_cm - R.transpose() * w.cross(r_cm))).norm() < 1e-15);
+  CHECK((momentum(s, x).linear / 2.0 - v_cm).norm() < 1e-15);
+  CHECK(get_joint<"fly">(s, x).w == w);
+  // Both velocities at once are refused, naming the joint.
+  auto y = x;
+  CHECK_THROWS_WITH(set_joint<"fly">(s, y, {.v = {1, 0, 0}, .v_cm = v_cm}),
+                    Catch::Contains("\"fly\"") && Catch::Contains("not both"));
+  CHECK_THROWS_WITH(set_joint<"fly">(s, y, {.v_cm = Vec3d(0, NAN, 0)}), Catch::Contains("v_cm is not finite"));
+}
+
+TEST_CASE("a floating tree set by its centre-of-mass velocity: the whole tree's, with the joints' rates as given") {
+  const auto s = floating_tree(9.81);
+  const Vec3d v_cm(0.4, -0.3, 1.5), w(0.7, 0.2, -1.1);
+  const auto R = orientation::cardan(0.2, 0.1, -0.4);
+  // In either order: the centre-of-mass velocity is worked out after every joint's rate is written.
+  const auto x = initial_state<"base_joint", "hip", "twist">(s, {.r = {0, 0, 1}, .R = R, .w = w, .v_cm = v_cm},
+                                                            {.q = -0.4, .v = 3.0}, {.q = 0.2, .v = -5.0});
+  const auto y = initial_state<"hip", "base_joint", "twist">(s, {.q = -0.4, .v = 3.0},
+                                                            {.r = {0, 0, 1}, .R = R, .w = w, .v_cm = v_cm},
+                                                            {.q = 0.2, .v = -5.0});
+  CHECK(x == y);
+  CHECK((momentum(s, x).linear / 4.5 - v_cm).norm() < 1e-14);
+  // Against the centre of mass's motion by central differences (error about h² = 1e-10).
+  constexpr int C = decltype(s)::index_of("base_joint");
+  CHECK((carried_cm_velocity_fd<C>(s, x) - v_cm).norm() < 1e-8);
+}
+
+TEST_CASE("a free motion on a turning frame: v_cm is relative to frame_a, in its axes") {
+  const auto s = scene(World<"world">({.g = {0, 0, 0}}), Revolute<"spin", axis::any>({.n = {0.3, 0, 1}}),
+                       FixedTranslation<"arm">({.d = {0.5, 0.2, 0}}), FreeMotion<"fly">{},
+                       Body<"hub">({.m = 1.0, .J = Mat3d::Identity()}),
+                       Body<"b", cm::offset>({.m = 2.0, .J = Vec3d(0.1, 0.2, 0.3).asDiagonal(), .r_cm = {0.3, -0.2, 0.1}}),
+                       connect<"world.frame_b", "spin.frame_a">, connect<"spin.frame_b", "arm.frame_a">,
+                       connect<"spin.frame_b", "hub.frame_a">, connect<"arm.frame_b", "fly.frame_a">,
+                       connect<"fly.frame_b", "b.frame_a">);
+  const Vec3d v_cm(0.2, 0.7, -0.5);
+  const auto x = initial_state<"spin", "fly">(
+      s, {.q = 0.6, .v = 2.5},
+      {.r = {0.1, 0.2, 0.3}, .R = orientation::cardan(0.5, 0.4, -0.3), .w = {0.3, -0.6, 0.9}, .v_cm = v_cm});
+  constexpr int C = decltype(s)::index_of("fly");
+  CHECK((carried_cm_velocity_fd<C>(s, x) - v_cm).norm() < 1e-8);
+}

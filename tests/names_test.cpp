@@ -1,4 +1,4 @@
-// Joints by name: inputs read q<"elbow">(x) and qd<"elbow">(x) resolved at
+// Joints by name: inputs read q<"elbow">(x) and v<"elbow">(x) resolved at
 // compile time, initial states written by name with every other joint at
 // its neutral configuration, recovered internals through the free
 // internal<"component", "variable">(sol). Each is checked against the same
@@ -48,12 +48,12 @@ auto arm3(T0 t0, T1 t1, T2 t2) {
 }  // namespace
 
 TEST_CASE("inputs that read joints by name equal the same inputs by position") {
-  auto by_name_s = [](auto, const auto& x) { return 8.0 * (0.5 - q<"shoulder">(x)) - 2.0 * qd<"shoulder">(x); };
-  auto by_name_e = [](auto, const auto& x) { return 6.0 * (0.3 - q<"elbow">(x)) - 1.0 * qd<"elbow">(x); };
-  auto by_name_w = [](auto, const auto& x) { return 2.0 * (q<"elbow">(x) - q<"wrist">(x)) - 0.5 * qd<"wrist">(x); };
-  auto by_pos_s = [](auto, const auto& x) { return 8.0 * (0.5 - x.q(0)) - 2.0 * x.qd(0); };
-  auto by_pos_e = [](auto, const auto& x) { return 6.0 * (0.3 - x.q(1)) - 1.0 * x.qd(1); };
-  auto by_pos_w = [](auto, const auto& x) { return 2.0 * (x.q(1) - x.q(2)) - 0.5 * x.qd(2); };
+  auto by_name_s = [](auto, const auto& x) { return 8.0 * (0.5 - q<"shoulder">(x)) - 2.0 * v<"shoulder">(x); };
+  auto by_name_e = [](auto, const auto& x) { return 6.0 * (0.3 - q<"elbow">(x)) - 1.0 * v<"elbow">(x); };
+  auto by_name_w = [](auto, const auto& x) { return 2.0 * (q<"elbow">(x) - q<"wrist">(x)) - 0.5 * v<"wrist">(x); };
+  auto by_pos_s = [](auto, const auto& x) { return 8.0 * (0.5 - x.q(0)) - 2.0 * x.v(0); };
+  auto by_pos_e = [](auto, const auto& x) { return 6.0 * (0.3 - x.q(1)) - 1.0 * x.v(1); };
+  auto by_pos_w = [](auto, const auto& x) { return 2.0 * (x.q(1) - x.q(2)) - 0.5 * x.v(2); };
   const auto named = arm3(by_name_s, by_name_e, by_name_w);
   const auto positional = arm3(by_pos_s, by_pos_e, by_pos_w);
   using A = decltype(named);
@@ -66,7 +66,7 @@ TEST_CASE("inputs that read joints by name equal the same inputs by position") {
     // The member form, as a non-generic caller writes it.
     const auto view = state_view<A>(x.data(), x.data() + A::n_q);
     CHECK(view.q<"wrist">() == x[2]);
-    CHECK(view.qd<"elbow">() == x[4]);
+    CHECK(view.v<"elbow">() == x[4]);
   }
   // The same through the dual-number Jacobian: the name resolves for any scalar.
   const A::state_type x{0.2, 0.1, -0.3, 0.5, 0.0, -0.4};
@@ -85,13 +85,19 @@ TEST_CASE("a multi-coordinate joint's name gives its coordinates and rates") {
       {.q = 0.25, .v = -1.5});
   const auto view = state_view<S>(x.data(), x.data() + S::n_q);
   const Eigen::Vector4d quat = q<"ball">(view);
-  const Eigen::Vector3d w = qd<"ball">(view);
+  const Eigen::Vector3d w = v<"ball">(view);
   CHECK(quat.norm() == Approx(1.0).epsilon(1e-15));
   for (int i = 0; i < 4; ++i) CHECK(quat[i] == x[S::q_offset("ball") + i]);
   for (int i = 0; i < 3; ++i) CHECK(w[i] == x[S::n_q + S::v_offset("ball") + i]);
   CHECK(w == Eigen::Vector3d(0.1, 0.2, 0.3));
   CHECK(q<"slide">(view) == 0.25);
+  CHECK(v<"slide">(view) == -1.5);
+  // The former name of the rates still reads them, deprecated for one release.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
   CHECK(qd<"slide">(view) == -1.5);
+  CHECK(view.qd(S::v_offset<"slide">()) == -1.5);
+#pragma GCC diagnostic pop
 }
 
 TEST_CASE("initial_state sets the named joints and leaves the others neutral and at rest") {

@@ -25,7 +25,7 @@ std::pair<int, double> worst_residual_along(const S& scene, typename S::state_ty
 
 TEST_CASE("the robot arm under a PD law satisfies its 106 equations along the trajectory") {
   auto pd = [](double t, const joint_state<double>& x) {
-    return Vec3d(0, 0, -20.0 * (x.q(0) - std::sin(t)) - 2.0 * x.qd(0));
+    return Vec3d(0, 0, -20.0 * (x.q(0) - std::sin(t)) - 2.0 * x.v(0));
   };
   const auto arm = models::robot_arm({}, pd);
   const auto [samples, worst] = worst_residual_along(arm, {-1.0, 0.0});

@@ -66,15 +66,18 @@ inline constexpr bool carries_body = requires { requires C::carries_body; };
 /// dynamics have no input arithmetic at all.
 struct undriven {};
 
-/// The minimal state (joint coordinates q and rates q̇, in the order the joints
-/// appear in the scene) as an input callable sees it.
+/// The minimal state (joint coordinates q and rates v, in the order the joints
+/// appear in the scene) as an input callable sees it: x.q(i), x.v(i). The
+/// rates are v everywhere (initial_state's .v, v<"elbow">(x)); they are q̇
+/// for one-axis joints, angular velocities where q holds a quaternion.
 template <class T>
 struct joint_state {
   const T* q_;
-  const T* qd_;
+  const T* v_;
   int n;
   [[nodiscard]] T q(int i) const { return q_[i]; }
-  [[nodiscard]] T qd(int i) const { return qd_[i]; }
+  [[nodiscard]] T v(int i) const { return v_[i]; }
+  [[deprecated("flange: the rates are v: write x.v(i)")]] [[nodiscard]] T qd(int i) const { return v_[i]; }
 };
 /// A joint state of scalar T: joint_state<T> or the scene's named view of it
 /// (scene/named_state.hpp), which inputs see so that they can read joints by name.

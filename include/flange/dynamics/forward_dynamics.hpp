@@ -44,7 +44,7 @@ void joint_forces(const S& scene, const T& t, const state_of<T> auto& x, T* tau)
     using LI = link_info<S, decltype(l)::value>;
     const auto& j = scene.template component<LI::joint>();
     if constexpr (has_generalized_force<typename LI::joint_type>)
-      j.generalized_force(t, x, x.q_ + LI::q, x.qd_ + LI::v, tau + LI::v);
+      j.generalized_force(t, x, x.q_ + LI::q, x.v_ + LI::v, tau + LI::v);
   });
 }
 

@@ -53,23 +53,41 @@ struct momentum_terms {
   Vec3<T> angular = Vec3<T>::Zero();
 };
 
+namespace detail {
+/// The mass, first moment Σ m·r_CM and momentum of the bodies keep(i)
+/// selects (i their component index), from the frames at a state.
+template <class T>
+struct mass_and_momentum {
+  T m = T(0);
+  Vec3<T> first_moment = Vec3<T>::Zero();
+  momentum_terms<T> h;
+};
+template <class S, class T, class Keep>
+[[nodiscard]] mass_and_momentum<T> momentum_of(const S& scene, const frames_at_state<S, T>& at, Keep keep) {
+  mass_and_momentum<T> r;
+  for_each_component(scene, [&](auto i, const auto& c) {
+    if constexpr (carries_body<std::remove_cvref_t<decltype(c)>>) {
+      if (!keep(decltype(i)::value)) return;
+      const auto& k = at.frames[S::table.frame_base[decltype(i)::value]];
+      // k.R turns world coordinates into frame_a's; k.w is in frame_a's, k.r and k.v in the world's.
+      const Vec3<T> cm = c.r_cm().template cast<T>();
+      const Vec3<T> rc = k.r + k.R.transpose() * cm;
+      const Vec3<T> p = T(c.m()) * (k.v + k.R.transpose() * k.w.cross(cm));
+      r.m += T(c.m());
+      r.first_moment += T(c.m()) * rc;
+      r.h.linear += p;
+      r.h.angular += rc.cross(p) + k.R.transpose() * (c.J().template cast<T>() * k.w);
+    }
+  });
+  return r;
+}
+}  // namespace detail
+
 /// The momentum at state x = (q, v).
 template <class S, class State, class T = double>
 [[nodiscard]] momentum_terms<T> momentum(const S& scene, const State& x) {
   const detail::frames_at_state<S, T> at(scene, x);
-  momentum_terms<T> h;
-  for_each_component(scene, [&](auto i, const auto& c) {
-    if constexpr (carries_body<std::remove_cvref_t<decltype(c)>>) {
-      const auto& k = at.frames[S::table.frame_base[decltype(i)::value]];
-      // k.R turns world coordinates into frame_a's; k.w is in frame_a's, k.r and k.v in the world's.
-      const Vec3<T> cm = c.r_cm().template cast<T>();
-      const Vec3<T> r = k.r + k.R.transpose() * cm;
-      const Vec3<T> p = T(c.m()) * (k.v + k.R.transpose() * k.w.cross(cm));
-      h.linear += p;
-      h.angular += r.cross(p) + k.R.transpose() * (c.J().template cast<T>() * k.w);
-    }
-  });
-  return h;
+  return detail::momentum_of(scene, at, [](int) { return true; }).h;
 }
 
 }  // namespace flange

@@ -18,6 +18,7 @@
 // It must be connected frame_a toward the World.
 #pragma once
 #include <array>
+#include <optional>
 
 #include <boost/hana/tuple.hpp>
 
@@ -117,16 +118,30 @@ class FreeMotion {
     for (int i = 0; i < 3; ++i) v[3 + i] = w(i);
   }
   /// A state set by hand: frame_b's position and velocity in frame_a
-  /// coordinates, its orientation, and its angular velocity (frame_b coordinates).
+  /// coordinates, its orientation, and its angular velocity (frame_b
+  /// coordinates). Or, instead of v, v_cm: the velocity (frame_a coordinates,
+  /// relative to frame_a) of the centre of mass of everything frame_b
+  /// carries; set_joint and initial_state then work out v from the scene's
+  /// bodies, with w and every other joint's rates as given:
+  ///
+  ///   set_joint<"base">(robot, x, {.R = orientation::rpy(0, 0.1, 0), .w = {0, 0, 2}, .v_cm = Vec3d(1, 0, 0)});
   struct state {
     Vec3d r = Vec3d::Zero();
     Vec3d v = Vec3d::Zero();
-    orientation R;
+    orientation R = {};
     Vec3d w = Vec3d::Zero();
+    std::optional<Vec3d> v_cm = std::nullopt;
   };
   void write_state(const state& s, double* q, double* v) const {
     detail::require_finite(name.view(), type_name, "the initial position r", s.r);
     detail::require_finite(name.view(), type_name, "the initial velocity v", s.v);
+    if (s.v_cm) {
+      detail::require_finite(name.view(), type_name, "the initial centre-of-mass velocity v_cm", *s.v_cm);
+      if (s.v != Vec3d::Zero())
+        throw parameter_error(detail::concat(type_name, " \"", name.view(), "\": both v = [", s.v.transpose(),
+                                             "] and v_cm are given; give the velocity of frame_b (v) or of the ",
+                                             "centre of mass (v_cm), not both"));
+    }
     detail::require_rotation(name.view(), type_name, "the initial orientation R", s.R.R);
     detail::require_finite(name.view(), type_name, "the initial angular velocity w", s.w);
     for (int i = 0; i < 3; ++i) q[i] = s.r(i), v[i] = s.v(i), v[3 + i] = s.w(i);

@@ -119,7 +119,7 @@ class Spherical {
   /// A state set by hand: the orientation of frame_b relative to frame_a
   /// and its angular velocity (frame_b coordinates).
   struct state {
-    orientation R;
+    orientation R = {};
     Vec3d w = Vec3d::Zero();
   };
   void write_state(const state& s, double* q, double* v) const {

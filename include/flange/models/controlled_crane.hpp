@@ -26,7 +26,7 @@ struct cart_pd {
   double kp = 10, kd = 6, target = 1.0;
   template <class T>
   T operator()(const T&, const joint_state<T>& x) const {
-    return T(kp) * (T(target) - x.q(0)) - T(kd) * x.qd(0);
+    return T(kp) * (T(target) - x.q(0)) - T(kd) * x.v(0);
   }
 };
 

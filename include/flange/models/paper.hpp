@@ -34,7 +34,7 @@ struct robot_arm_params {
 };
 
 /// The paper's robot arm. M_ext is a constant torque vector, a callable of t,
-/// or of (t, x) with x the joint state (φ = x.q(0), φ̇ = x.qd(0)).
+/// or of (t, x) with x the joint state (φ = x.q(0), φ̇ = x.v(0)).
 template <class In = Vec3d>
 auto robot_arm(const robot_arm_params& p = {}, In M_ext = Vec3d::Zero()) {
   return scene(World<"world">({.g = {0, -p.g, 0}}),                //

@@ -1,10 +1,11 @@
 // Joints by name, resolved at compile time.
 //
 // An input callable f(t, x) sees the joint state x as a named_joint_state of
-// its scene: q<"elbow">(x) and qd<"elbow">(x) read the joint named "elbow"
+// its scene: q<"elbow">(x) and v<"elbow">(x) read the joint named "elbow"
 // (a number for a one-coordinate joint, a fixed-size vector of its
 // coordinates or rates otherwise) from the scene's table, with no search at
-// run time. x.q(i) and x.qd(i) still read by position.
+// run time. x.q(i) and x.v(i) still read by position. The rates are v, as in
+// initial_state's {.q, .v}; qd is a deprecated name for them.
 //
 // A name that is not a joint of the scene is one error whose instantiation
 // line lists the valid names:
@@ -115,11 +116,12 @@ constexpr int joint_named(std::string_view name) {
 }  // namespace detail
 
 /// The joint state of scene S as an input callable sees it: by position
-/// (x.q(i), x.qd(i)) as joint_state, and by name (q<"elbow">(x)).
+/// (x.q(i), x.v(i)) as joint_state, and by name (q<"elbow">(x), v<"elbow">(x)).
 template <class T, class S>
 struct named_joint_state : joint_state<T> {
   using scene_type = S;
   using joint_state<T>::q;
+  using joint_state<T>::v;
   using joint_state<T>::qd;
 
   /// The named joint's coordinates: a T for a one-coordinate joint, else a
@@ -130,12 +132,17 @@ struct named_joint_state : joint_state<T> {
     if constexpr (c < 0) return T(0);  // after the diagnostic, no second error
     else return read<S::table.nq[c]>(this->q_ + S::tree.q_offset[c]);
   }
-  /// The named joint's rates: a T for a one-coordinate joint, else its nv rates.
+  /// The named joint's rates: a T for a one-coordinate joint, else its nv
+  /// rates (a Spherical's angular velocity, a FreeMotion's v then ω).
   template <fixed_string Name>
-  [[nodiscard]] auto qd() const {
+  [[nodiscard]] auto v() const {
     constexpr int c = detail::joint_named<S, Name>();
     if constexpr (c < 0) return T(0);
-    else return read<S::table.nv[c]>(this->qd_ + S::tree.v_offset[c]);
+    else return read<S::table.nv[c]>(this->v_ + S::tree.v_offset[c]);
+  }
+  template <fixed_string Name>
+  [[deprecated("flange: the rates are v: write v<\"name\">(x) or x.v<\"name\">()")]] [[nodiscard]] auto qd() const {
+    return v<Name>();
   }
 
  private:
@@ -164,10 +171,15 @@ template <fixed_string Name, class T, class S>
 [[nodiscard]] auto q(const named_joint_state<T, S>& x) {
   return x.template q<Name>();
 }
-/// qd<"elbow">(x): the named joint's rates.
+/// v<"elbow">(x): the named joint's rates.
 template <fixed_string Name, class T, class S>
-[[nodiscard]] auto qd(const named_joint_state<T, S>& x) {
-  return x.template qd<Name>();
+[[nodiscard]] auto v(const named_joint_state<T, S>& x) {
+  return x.template v<Name>();
+}
+/// The former name of v<"elbow">(x), kept for one release.
+template <fixed_string Name, class T, class S>
+[[deprecated("flange: the rates are v: write v<\"name\">(x)")]] [[nodiscard]] auto qd(const named_joint_state<T, S>& x) {
+  return x.template v<Name>();
 }
 
 }  // namespace flange

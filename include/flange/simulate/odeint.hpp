@@ -1,6 +1,6 @@
 // The Boost.Odeint boundary.
 //
-// A scene is itself an Odeint system: scene(x, dxdt, t). Its state x = (q, q̇)
+// A scene is itself an Odeint system: scene(x, dxdt, t). Its state x = (q, v)
 // may be
 //   * Scene::state_type = std::array<double, 2n>, with Odeint's default
 //     range_algebra (the faster choice for small states), or

@@ -17,6 +17,7 @@
 
 #include "flange/dynamics/algorithm.hpp"
 #include "flange/dynamics/model.hpp"
+#include "flange/dynamics/momentum.hpp"
 #include "flange/scene/scene.hpp"
 
 namespace flange {
@@ -160,6 +161,34 @@ struct named_joint {
   static constexpr int index = found >= 0 ? found : joint_indices<S>()[0];  // no second error after the first
   using type = typename S::template component_type<index>;
 };
+/// Whether component I is a body that joint C carries (C's link or a link
+/// beyond it).
+template <class S, int C>
+constexpr bool carried_by(int i) {
+  int l = S::tree.set_link[S::topology.set_of[S::table.frame_base[i]]];
+  for (; l > 0; l = S::tree.link_parent[l])
+    if (l == S::tree.link_of_joint[C]) return true;
+  return false;
+}
+/// Joint C's translation rates (its first three, frame_b's velocity in
+/// frame_a coordinates, relative to frame_a) such that the centre of mass
+/// of everything C carries moves at v_cm (the same terms), every other rate
+/// in x as it is. That velocity is v_cm(0) + v, v_cm(0) what it is with the
+/// three at zero: so v = v_cm − v_cm(0), from the frames at x.
+template <class S, class State, int C>
+void set_centre_of_mass_velocity(const S& scene, State& x, const Vec3d& v_cm) {
+  double* v = &x[S::n_q + S::tree.v_offset[C]];
+  for (int i = 0; i < 3; ++i) v[i] = 0;
+  const frames_at_state<S, double> at(scene, x);
+  const auto carried = momentum_of(scene, at, [](int i) { return carried_by<S, C>(i); });
+  if (!(carried.m > 0))
+    throw parameter_error(concat(S::table.type_names[C], " \"", S::table.names[C], "\": v_cm is given, but the joint ",
+                                 "carries no mass, so it has no centre of mass"));
+  const auto& a = at.frames[S::table.frame_base[C]];  // frame_a: k.R world → frame_a, k.w in frame_a's axes
+  const Vec3d r_cm = carried.first_moment / carried.m, v_cm0_world = carried.h.linear / carried.m;
+  const Vec3d v_cm0 = a.R * (v_cm0_world - a.v) - a.w.cross(a.R * (r_cm - a.r));
+  for (int i = 0; i < 3; ++i) v[i] = v_cm[i] - v_cm0[i];
+}
 template <class S, class State, int C>
 void write_joint(const S& scene, State& x, const joint_state_t<typename S::template component_type<C>>& value) {
   std::array<double, S::template component_type<C>::nq> q;
@@ -168,16 +197,24 @@ void write_joint(const S& scene, State& x, const joint_state_t<typename S::templ
   for (std::size_t i = 0; i < q.size(); ++i) x[S::tree.q_offset[C] + i] = q[i];
   for (std::size_t i = 0; i < v.size(); ++i) x[S::n_q + S::tree.v_offset[C] + i] = v[i];
 }
+/// After every joint is written: a centre-of-mass velocity where one was given.
+template <class S, class State, int C>
+void finish_joint(const S& scene, State& x, const joint_state_t<typename S::template component_type<C>>& value) {
+  if constexpr (requires { value.v_cm; })
+    if (value.v_cm) set_centre_of_mass_velocity<S, State, C>(scene, x, *value.v_cm);
+}
 }  // namespace detail
 
 /// Sets the named joint's coordinates and rates in x from its state type
 /// (Revolute: {.q, .v}; Spherical: {.R = orientation::…, .w}; FreeMotion:
-/// {.r, .v, .R, .w}; Universal, Cylindrical, Planar: {.q = {…}, .v = {…}}),
-/// checked: an orientation must be a rotation, every number finite.
+/// {.r, .v, .R, .w}, or .v_cm, the velocity of the centre of mass of all it
+/// carries, instead of .v; Universal, Cylindrical, Planar: {.q = {…}, .v =
+/// {…}}), checked: an orientation must be a rotation, every number finite.
 template <fixed_string Name, class S, class State>
 void set_joint(const S& scene, State& x, const joint_state_t<typename detail::named_joint<S, Name>::type>& value) {
   S::require_state_size(x);
   detail::write_joint<S, State, detail::named_joint<S, Name>::index>(scene, x, value);
+  detail::finish_joint<S, State, detail::named_joint<S, Name>::index>(scene, x, value);
 }
 
 /// The named joint's state in its own terms, read from x: what set_joint
@@ -220,6 +257,7 @@ typename S::state_type initial_state(const S& scene,
   }
   auto x = neutral_state(scene);
   (detail::write_joint<S, typename S::state_type, detail::named_joint<S, Names>::index>(scene, x, values), ...);
+  (detail::finish_joint<S, typename S::state_type, detail::named_joint<S, Names>::index>(scene, x, values), ...);
   return x;
 }
 
