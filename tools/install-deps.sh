@@ -2,7 +2,8 @@
 # Installs, with apt-get, the Debian 12 packages flange needs that are missing.
 # Run as root (or with sudo). Nothing is installed when everything is there.
 #   tools/install-deps.sh            compiler, CMake, Eigen, Boost 1.81, Catch2, Google Benchmark,
-#                                    valgrind (the memcheck test), tinyxml2 (flange-urdf)
+#                                    valgrind (the memcheck test), tinyxml2 (flange-urdf), python3
+#                                    (tools/doc_snippets.py: the docs' snippets become tests)
 #   tools/install-deps.sh --plots    also gnuplot, for docs/*.png
 #   tools/install-deps.sh --peers    also MuJoCo and Simbody, the work-precision study's peers
 #   tools/install-deps.sh --ensembles  also oneTBB, Boost.MPI and Open MPI, for parallel ensembles
@@ -16,7 +17,7 @@ set -euo pipefail
 viewer=0
 # Boost 1.81, not Debian's default 1.74: its uBLAS compiles as C++20, which
 # keeps rosenbrock4 header-only. Installing it replaces libboost1.74-dev.
-packages=(g++ cmake make libeigen3-dev libboost1.81-dev catch2 libbenchmark-dev valgrind libtinyxml2-dev)
+packages=(g++ cmake make libeigen3-dev libboost1.81-dev catch2 libbenchmark-dev valgrind libtinyxml2-dev python3)
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(gnuplot-nox) ;;
