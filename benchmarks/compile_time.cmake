@@ -1,21 +1,54 @@
-# Times the compilation of each translation unit given in SOURCES (wall clock,
-# the flags of a Release build) and writes "unit,seconds" rows to OUTPUT.
+# Times the compilation of each translation unit given in SOURCES, and of
+# each in PCH_SOURCES against a precompiled flange.hpp (built first, in
+# PCH_DIR, and timed itself): compiler CPU time (user + system, from bash's
+# `time -p`), the median of three compiles, at the flags of a Release build.
+# Writes "unit,seconds" rows to OUTPUT ("+pch" after a unit compiled with the
+# precompiled header).
 string(REPLACE "|" ";" sources "${SOURCES}")
+string(REPLACE "|" ";" pch_sources "${PCH_SOURCES}")
 string(REPLACE "|" ";" flags "${FLAGS}")
 file(WRITE ${OUTPUT} "unit,seconds\n")
-foreach(src IN LISTS sources)
-  get_filename_component(name ${src} NAME_WE)
-  string(TIMESTAMP t0 "%s%f" UTC)
-  execute_process(COMMAND ${CXX} ${flags} -c ${src} -o ${CMAKE_CURRENT_BINARY_DIR}/${name}.timing.o RESULT_VARIABLE rc)
-  string(TIMESTAMP t1 "%s%f" UTC)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "compile_time: ${src} did not compile")
-  endif()
-  math(EXPR us "${t1} - ${t0}")
-  math(EXPR s "${us} / 1000000")
-  math(EXPR frac "(${us} % 1000000) / 10000")
+
+# The median CPU time of three runs of the command in ARGN, in `seconds`.
+function(cpu_time_of name)
+  set(runs "")
+  foreach(i 1 2 3)
+    list(JOIN ARGN " " cmd)
+    execute_process(COMMAND bash -c "TIMEFORMAT='%U %S'; { time ${cmd} >/dev/null 2>&1 ; } 2>&1"
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "compile_time: ${name} did not compile")
+    endif()
+    string(STRIP "${out}" out)
+    string(REGEX MATCHALL "[0-9.]+" parts "${out}")
+    list(GET parts -2 user)
+    list(GET parts -1 sys)
+    # hundredths of a second, summed
+    string(REPLACE "." "" u "${user}")
+    string(REPLACE "." "" s "${sys}")
+    math(EXPR t "${u} + ${s}")
+    list(APPEND runs ${t})
+  endforeach()
+  list(SORT runs COMPARE NATURAL)
+  list(GET runs 1 med)
+  math(EXPR whole "${med} / 100")
+  math(EXPR frac "${med} % 100")
   if(frac LESS 10)
     set(frac "0${frac}")
   endif()
-  file(APPEND ${OUTPUT} "${name},${s}.${frac}\n")
+  file(APPEND ${OUTPUT} "${name},${whole}.${frac}\n")
+endfunction()
+
+foreach(src IN LISTS sources)
+  get_filename_component(name ${src} NAME_WE)
+  cpu_time_of(${name} ${CXX} ${flags} -c ${src} -o ${CMAKE_CURRENT_BINARY_DIR}/${name}.timing.o)
 endforeach()
+if(pch_sources)
+  file(MAKE_DIRECTORY ${PCH_DIR}/flange)
+  cpu_time_of("flange.hpp.gch (once)" ${CXX} ${flags} -x c++-header ${PCH_HEADER} -o ${PCH_DIR}/flange/flange.hpp.gch)
+  foreach(src IN LISTS pch_sources)
+    get_filename_component(name ${src} NAME_WE)
+    cpu_time_of("${name}+pch" ${CXX} -I${PCH_DIR} ${flags} -include flange/flange.hpp -Winvalid-pch -c ${src}
+                -o ${CMAKE_CURRENT_BINARY_DIR}/${name}.pch.timing.o)
+  endforeach()
+endif()

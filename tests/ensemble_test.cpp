@@ -13,6 +13,7 @@
 #include <flange/ensemble/tbb.hpp>
 #include <flange/flange.hpp>
 #include <flange/models/controlled_crane.hpp>
+#include <flange/simulate/bulirsch_stoer.hpp>
 
 using namespace flange;
 namespace en = flange::ensemble;

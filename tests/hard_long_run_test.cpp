@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include <flange/flange.hpp>
+#include <boost/numeric/odeint.hpp>  // all of Odeint: the steppers flange.hpp leaves out
 
 using namespace flange;
 

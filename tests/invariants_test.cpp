@@ -24,6 +24,7 @@
 #include <flange/ensemble/tbb.hpp>
 #endif
 #include <flange/simulate/rosenbrock4.hpp>
+#include <flange/simulate/bulirsch_stoer.hpp>
 
 #include "invariant_scenes.hpp"
 

@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 #include <flange/flange.hpp>
 #include <flange/simulate/rosenbrock4.hpp>
+#include <boost/numeric/odeint.hpp>  // all of Odeint: the steppers flange.hpp leaves out
 
 #include "consistency.hpp"
 

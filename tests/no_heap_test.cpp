@@ -21,6 +21,7 @@
 #include <flange/joints/free_motion.hpp>
 #include <flange/components/body.hpp>
 #include <flange/models/linkages.hpp>
+#include <boost/numeric/odeint.hpp>  // all of Odeint: the steppers flange.hpp leaves out
 
 #include "allocation_counter.hpp"
 #include "random_params.hpp"

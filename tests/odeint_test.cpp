@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 #include <flange/simulate/odeint.hpp>
+#include <boost/numeric/odeint.hpp>  // all of Odeint: the steppers flange.hpp leaves out
 
 #include "random_params.hpp"
 

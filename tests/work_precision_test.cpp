@@ -6,6 +6,7 @@
 #include <flange/flange.hpp>
 #include <flange/simulate/rosenbrock4.hpp>
 #include <flange/study/work_precision.hpp>
+#include <boost/numeric/odeint.hpp>  // all of Odeint: the steppers flange.hpp leaves out
 
 using namespace flange;
 

@@ -126,7 +126,11 @@ struct slider_crank_params {
 /// The slider-crank: the crank turns about O (joint "crank_pivot", q = θ),
 /// the rod about the crank pin ("crank_pin", relative), the piston slides
 /// along x ("slide", q = its x); "wrist_pin" joins rod and piston and is cut.
-inline auto slider_crank(const slider_crank_params& p) {
+/// (A template whose body depends on its parameter, as every scene factory
+/// here: otherwise the scene's type, its model and its dynamics would be
+/// built in every unit that includes flange.hpp, used or not.)
+template <class Params = slider_crank_params>
+auto slider_crank(const Params& p) {
   return scene(World<"world">({.g = p.g}),                                                            //
                Revolute<"crank_pivot", axis::z>{}, bar<"crank">(p.crank, p.m_crank),      //
                Revolute<"crank_pin", axis::z>{}, bar<"rod">(p.rod, p.m_rod),              //

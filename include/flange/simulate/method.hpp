@@ -7,14 +7,15 @@
 //                           Odeint's make_dense_output(…, runge_kutta_dopri5)
 //   method::bulirsch_stoer  Bulirsch–Stoer with dense output: high order for smooth
 //                           scenes at tight tolerances (Odeint's implementation
-//                           allocates two small vectors per step)
+//                           allocates two small vectors per step); its header,
+//                           bulirsch_stoer.hpp, brings Boost.Math's special
+//                           functions, so flange.hpp leaves it out
 //   method::rosenbrock4     the stiff stepper with the exact Jacobian (rosenbrock4.hpp)
 //
 // A method of one's own is a type with make<X>(abs_tol, rel_tol) returning
 // an Odeint dense-output stepper, or with stepping<X>(scene, abs_tol,
 // rel_tol) returning an adapter.
 #pragma once
-#include <boost/numeric/odeint/stepper/bulirsch_stoer_dense_out.hpp>
 #include <boost/numeric/odeint/stepper/generation.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 
@@ -31,19 +32,19 @@ struct dopri5 {
     return odeint::make_dense_output(abs_tol, rel_tol, odeint::runge_kutta_dopri5<X>());
   }
 };
-/// Bulirsch–Stoer with dense output.
-struct bulirsch_stoer {
-  template <class X>
-  static auto make(double abs_tol, double rel_tol) {
-    return boost::numeric::odeint::bulirsch_stoer_dense_out<X>(abs_tol, rel_tol);
-  }
-};
+/// Bulirsch–Stoer with dense output: <flange/simulate/bulirsch_stoer.hpp>.
+struct bulirsch_stoer;
 }  // namespace method
 
 namespace detail {
+template <class T>
+concept complete_type = requires { sizeof(T); };
 /// The stepping adapter of a method for the scene S and the state X.
 template <class Method, class X, class S>
 auto method_stepping(const S& scene, double abs_tol, double rel_tol) {
+  static_assert(complete_type<Method>,
+                "flange: this method is declared but its header is not included: "
+                "method::bulirsch_stoer needs #include <flange/simulate/bulirsch_stoer.hpp>");
   if constexpr (requires { Method::template stepping<X>(scene, abs_tol, rel_tol); }) {
     return Method::template stepping<X>(scene, abs_tol, rel_tol);
   } else {

@@ -163,8 +163,9 @@ inline std::vector<double> output_times(double t0, double t1, double dt) {
 }
 
 /// The state at t1 from x0 at t0; observer(x, t) sees the start and every
-/// step. Method: method::dopri5 (the default), method::bulirsch_stoer,
-/// method::rosenbrock4 (simulate/rosenbrock4.hpp) or one's own (method.hpp).
+/// step. Method: method::dopri5 (the default), method::bulirsch_stoer
+/// (simulate/bulirsch_stoer.hpp), method::rosenbrock4 (simulate/rosenbrock4.hpp)
+/// or one's own (method.hpp).
 /// Throws simulation_error (time, state, reason) or parameter_error.
 template <class Method = method::dopri5, class S, class Observer = boost::numeric::odeint::null_observer>
 typename S::state_type simulate(const S& scene, typename S::state_type x0, double t0, double t1,
