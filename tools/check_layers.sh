@@ -2,6 +2,7 @@
 # Fails when a header includes one from a higher layer (docs/architecture.md):
 #   0 detail/, errors.hpp   1 math/   2 core/   3 components/, joints/, forces/
 #   4 scene/   5 equations/   6 dynamics/   7 simulate/   8 models/, study/, ensemble/, viewer/   9 flange.hpp
+#   10 python/
 # A header may include its own layer and the layers below it.
 #   tools/check_layers.sh [include/flange]
 set -euo pipefail
@@ -18,6 +19,7 @@ rank() {
     simulate/*) echo 7 ;;
     models/*|study/*|ensemble/*|viewer/*) echo 8 ;;
     flange.hpp|equations_of_motion.hpp) echo 9 ;;
+    python/*) echo 10 ;;
     *) echo "unknown" ;;
   esac
 }

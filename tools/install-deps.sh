@@ -12,6 +12,8 @@
 #                                    (tools/sanitizers.sh)
 #   tools/install-deps.sh --viewer   also headless Chromium and npm, and three.js from npm into
 #                                    tools/viewer/node_modules (the trajectory pages inline it)
+#   tools/install-deps.sh --python   also pybind11, Python's headers, numpy, pytest and matplotlib
+#                                    (scene modules for Python, docs/python.md)
 # (the options may be given together.)
 set -euo pipefail
 viewer=0
@@ -25,12 +27,13 @@ for arg in "$@"; do
     --ensembles) packages+=(libtbb-dev libboost-mpi1.81-dev openmpi-bin) ;;
     --urdf) packages+=(libmujoco-dev) ;;
     --sanitizers) packages+=(clang-14 libclang-rt-14-dev libfuzzer-14-dev) ;;
+    --python) packages+=(pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib) ;;
     --viewer)
       viewer=1
       packages+=(chromium-headless-shell)
       command -v npm >/dev/null || packages+=(npm)
       ;;
-    *) echo "install-deps: unknown option $arg (use --plots, --peers, --ensembles, --urdf, --sanitizers, --viewer)" >&2; exit 2 ;;
+    *) echo "install-deps: unknown option $arg (use --plots, --peers, --ensembles, --urdf, --sanitizers, --viewer, --python)" >&2; exit 2 ;;
   esac
 done
 missing=()

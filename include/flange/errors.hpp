@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace flange {
 
@@ -21,10 +22,15 @@ struct parameter_error : error {
 };
 
 /// A breakdown during simulation (singular mass matrix, non-finite state,
-/// stepper failure). The message gives the time, the state and the reason.
+/// stepper failure). The message gives the time, the state and the reason;
+/// the members give them as values (the state and reason empty where the
+/// thrower had none to give).
 struct simulation_error : error {
-  simulation_error(const std::string& what, double t) : error(what), time(t) {}
+  simulation_error(const std::string& what, double t, std::vector<double> x = {}, std::string why = {})
+      : error(what), time(t), state(std::move(x)), reason(std::move(why)) {}
   double time;
+  std::vector<double> state;  ///< the state at `time`
+  std::string reason;         ///< what went wrong, without the time and the state
 };
 
 namespace detail {

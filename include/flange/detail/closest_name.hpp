@@ -66,13 +66,15 @@ constexpr int edit_distance(std::string_view a, std::string_view b) {
   return row[(a.size() + 1) % 3][b.size()];
 }
 
-/// The index in names of the one closest to name (−1 if names is empty).
-template <std::size_t N>
-constexpr int closest_name(std::string_view name, const std::array<std::string_view, N>& names) {
-  int best = -1, best_d = 0;
-  for (std::size_t i = 0; i < N; ++i) {
-    const int d = edit_distance(name, names[i]);
-    if (best < 0 || d < best_d) best = int(i), best_d = d;
+/// The index in names (any range of names: an array, a vector of strings)
+/// of the one closest to name (−1 if names is empty).
+template <class Names>
+constexpr int closest_name(std::string_view name, const Names& names) {
+  int best = -1, best_d = 0, i = 0;
+  for (const auto& n : names) {
+    const int d = edit_distance(name, std::string_view(n));
+    if (best < 0 || d < best_d) best = i, best_d = d;
+    ++i;
   }
   return best;
 }

@@ -10,6 +10,7 @@
 #pragma once
 #include <array>
 #include <sstream>
+#include <vector>
 #include <string>
 
 #include "flange/detail/inline.hpp"
@@ -204,6 +205,15 @@ template <class T>
   for (int i = 0; i < nv; ++i) os << (i ? ", " : "") << static_cast<long double>(v[i]);
   os << "]";
   return os.str();
+}
+/// The state (q, v) as values, for a simulation_error.
+template <class T>
+[[nodiscard]] std::vector<double> state_values(const T* q, int nq, const T* v, int nv) {
+  std::vector<double> x;
+  x.reserve(static_cast<std::size_t>(nq + nv));
+  for (int i = 0; i < nq; ++i) x.push_back(static_cast<double>(q[i]));
+  for (int i = 0; i < nv; ++i) x.push_back(static_cast<double>(v[i]));
+  return x;
 }
 
 }  // namespace flange::detail

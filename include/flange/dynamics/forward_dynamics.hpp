@@ -68,7 +68,7 @@ template <class S, class T>
                                   describe_state(q, S::n_q, v, S::n_v),
                                   ": the integration diverged before this evaluation (a step too large for the "
                                   "stepper's stability, or an input that returned NaN)"),
-                           static_cast<double>(t));
+                           static_cast<double>(t), state_values(q, S::n_q, v, S::n_v), "the state is not finite");
   const double d = static_cast<double>(p.d), scale = static_cast<double>(p.scale);
   const auto [joint, k] = rate_owner<S>(p.index);
   const std::string why =
@@ -80,7 +80,8 @@ template <class S, class T>
   throw simulation_error(concat("flange: singular mass matrix at t = ", static_cast<double>(t), ", ",
                                 describe_state(q, S::n_q, v, S::n_v), ": joint \"", joint, "\"", which, " (v[",
                                 p.index, "]): ", why),
-                         static_cast<double>(t));
+                         static_cast<double>(t), state_values(q, S::n_q, v, S::n_v),
+                         concat("singular mass matrix: joint \"", joint, "\"", which, ": ", why));
 }
 
 /// The link motions an algebra's passes need at q (a tuple, links.hpp), and

@@ -203,6 +203,13 @@ struct run_options {
   enum class show { if_terminal, always, never } progress_line = show::if_terminal;
 };
 
+/// Tells a recorder which case it records, if it asks (a recorder that
+/// writes into an array of the caller's, row by case: states_at).
+template <class R>
+void begin_case(R& r, std::size_t index) {
+  if constexpr (requires { r.begin_case(index); }) r.begin_case(index);
+}
+
 /// An ensemble: how to build a case's scene, how to integrate it, what to record.
 template <class Setup, class Method, class... Recorders>
 class study {
@@ -262,6 +269,7 @@ class study {
       const S& s = std::get<0>(made);
       X& x = std::get<1>(made);
       auto recs = recs_;  // this case's recorders
+      std::apply([&](auto&... r) { (begin_case(r, index), ...); }, recs);
       record_steps<S, X, decltype(recs)> watch{s, recs, last, have_last};
       o.steps = ::flange::detail::checked_run<Method>(s, x, t0_, t1_, options_, evals, watch);
       int at = 0;

@@ -10,6 +10,8 @@
 //                                               found by bisection on the dense output
 //   ensemble::settling_time("settle", f, band)  the last time |f| > band (0 if never)
 //   ensemble::at_times<K>("s", f, {t₁, …, t_K})  f at chosen times (K columns)
+//   ensemble::states_at(times, n, out)          the whole state at each of n times, into an
+//                                               array of the caller's (no columns)
 //
 // f is called as f(scene, t, x) and returns a double. Names are string
 // literals (a recorder is copied for every case and must not allocate). The
@@ -24,10 +26,12 @@
 //                                (the integration loop's step_view, simulate/integrate.hpp: the
 //                                ends after the projection, at(t, x) the interpolation, projected)
 //   void finish(const S&, double t1, const X& x1, double* out);
+// and, if it wants to know which case it records, void begin_case(std::size_t index);
 // so users can write their own.
 #pragma once
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -258,5 +262,56 @@ template <int K, class F>
 at_times_of<K, F> at_times(std::string_view name, F f, std::array<double, K> times) {
   return {name, f, times};
 }
+
+/// The whole state at each of n times (times[0] = t0, increasing, the last
+/// t1), written into the caller's array: case i's state at times[k] at
+/// out + (i·n + k)·n_state. The states are those simulate(scene, x0, times)
+/// returns, bit for bit: the same dense output inside the same steps. It has
+/// no columns; a failed case's rows after its failure keep what the array
+/// held (fill it with NaN first to tell). Each case writes only its own
+/// rows, so parallel policies need no lock.
+class states_at {
+ public:
+  states_at(const double* times, std::size_t n, double* out) : times_(times), n_(n), out_(out) {}
+  template <class S>
+  static constexpr int width() {
+    return 0;
+  }
+  template <class S>
+  void names(std::string*) const {}
+  void begin_case(std::size_t index) { index_ = index; }
+  template <class S, class X>
+  void start(const S&, double, const X& x0) {
+    width_ = S::n_state;
+    row_ = out_ + index_ * n_ * width_;
+    put(0, x0);
+    next_ = 1;
+  }
+  template <class V>
+  void step(const V& v) {
+    for (; next_ < n_ && v.t1 - times_[next_] >= 0; ++next_) {
+      auto x = v.x1;
+      if (times_[next_] != v.t1) v.at(times_[next_], x);
+      put(next_, x);
+    }
+  }
+  /// The last step ends on t1 to round-off: a time it stopped a few ulp
+  /// short of is the end state's (as simulate does).
+  template <class S, class X>
+  void finish(const S&, double, const X& x1, double*) {
+    for (; next_ < n_; ++next_) put(next_, x1);
+  }
+
+ private:
+  const double* times_;
+  std::size_t n_;
+  double* out_;
+  std::size_t index_ = 0, width_ = 0, next_ = 0;
+  double* row_ = nullptr;  ///< this case's first row
+  template <class X>
+  void put(std::size_t k, const X& x) {
+    for (std::size_t i = 0; i < width_; ++i) row_[k * width_ + i] = static_cast<double>(x[i]);
+  }
+};
 
 }  // namespace flange::ensemble

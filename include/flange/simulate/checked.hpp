@@ -68,8 +68,10 @@ bool finite(const State& x) {
 /// Throws simulation_error "flange: <why> at t = …, x = […]".
 template <class State, class T>
 [[noreturn, gnu::cold]] void fail_at(const std::string& why, const State& x, const T& t) {
+  std::vector<double> state(x.size());
+  for (std::size_t i = 0; i < state.size(); ++i) state[i] = static_cast<double>(x[i]);
   throw simulation_error(concat("flange: ", why, " at t = ", static_cast<double>(t), ", ", describe(x)),
-                         static_cast<double>(t));
+                         static_cast<double>(t), std::move(state), why);
 }
 /// How far a state is off the scene's invariants, and where most.
 struct drift_report {
