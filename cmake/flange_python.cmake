@@ -24,10 +24,12 @@
 # Needs Debian's pybind11-dev and python3-dev (tools/install-deps.sh --python).
 # oneTBB, where found, runs ensembles on threads.
 
-set(_FLANGE_PYTHON_PACKAGE_DIR "${CMAKE_CURRENT_LIST_DIR}/../python/flange")
-if(NOT EXISTS "${_FLANGE_PYTHON_PACKAGE_DIR}/__init__.py")
-  # installed: share/flange/python/flange
-  set(_FLANGE_PYTHON_PACKAGE_DIR "${CMAKE_CURRENT_LIST_DIR}/../../../share/flange/python/flange")
+# The `flange` package: installed, flangeConfig.cmake says where; in the
+# source tree, python/flange.
+if(FLANGE_PYTHON_PACKAGE_DIR)
+  set(_FLANGE_PYTHON_PACKAGE_DIR "${FLANGE_PYTHON_PACKAGE_DIR}")
+else()
+  set(_FLANGE_PYTHON_PACKAGE_DIR "${CMAKE_CURRENT_LIST_DIR}/../python/flange")
 endif()
 
 function(flange_add_python_module)
