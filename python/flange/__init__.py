@@ -74,6 +74,7 @@ class EnsembleResult:
     steps: np.ndarray  #: accepted steps per case
     rhs_evals: np.ndarray  #: derivative evaluations per case
     parameters: dict = field(default_factory=dict)  #: each parameter's value per case
+    recorded: dict = field(default_factory=dict)  #: each recorder's value per case (NaN: never seen, or failed)
 
     def __len__(self):
         return len(self.ok)

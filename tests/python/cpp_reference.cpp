@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <flange/ensemble/ensemble.hpp>
 #include <flange/flange.hpp>
 #include <flange/simulate/rosenbrock4.hpp>
 
@@ -115,6 +116,39 @@ int main(int argc, char** argv) {
     rows(tr.x);
   }
   std::fprintf(out, "]}");
+  first_key = false;
+
+  // the same cases with the C++ recorders the module offers by name
+  // (test_cpp_identity.py asks for them as tuples)
+  namespace en = flange::ensemble;
+  const auto setup = [&](const std::array<double, 1>& c) {
+    models::controlled_crane_params p;
+    p.controller.kp = c[0];
+    return std::pair{models::controlled_crane(p), xc};
+  };
+  const auto swing = [](const auto&, double, const auto& x) { return std::abs(x[1] - (-std::numbers::pi / 2)); };
+  const auto pivot_v = [](const auto&, double, const auto& x) { return x[3]; };
+  const auto rail = [](const auto&, double, const auto& x) { return x[0] - (-0.2); };
+  const auto rail_q = [](const auto&, double, const auto& x) { return x[0]; };
+  const auto total = [](const auto& s, double t, const auto& x) { return energy(s, t, x).total(); };
+  const auto study = en::make(setup, times.front(), times.back(), {.tolerance = 1e-9}, en::maximum("swing", swing),
+                              en::crossing("down", pivot_v, -1), en::settling_time("settle", rail, 0.05),
+                              en::minimum("low", rail_q), en::final_value("final", rail_q),
+                              en::maximum("energy", total));
+  en::case_set<1> cases{{"kp"}, {}};
+  for (double k : kp) cases.cases.push_back({k});
+  const auto res = study.run(cases);
+  key("crane_recorders");
+  std::fprintf(out, "{");
+  first_key = true;
+  const char* names[] = {"swing", "down", "settle", "low", "final", "energy"};
+  for (int j = 0; j < 6; ++j) {
+    std::vector<double> col;
+    for (const auto& row : res.rows) col.push_back(row.values[j]);
+    key(names[j]);
+    numbers(col);
+  }
+  std::fprintf(out, "}");
   first_key = false;
 
   const auto arm = spatial_arm::make_scene();

@@ -129,3 +129,17 @@ def test_ensemble_failures_are_recorded_per_case():
     assert not res.ok.any()
     assert all("budget" in r for r in res.reason)
     assert (res.fail_time > 0).all() and np.isfinite(res.fail_state).all()
+
+
+def test_bodies_and_momentum_conserved_on_the_free_body():
+    bodies = {b["name"]: b for b in free_body.bodies()}
+    assert bodies["hull"]["m"] == 3.0 and bodies["bob"]["m"] == 1.0
+    np.testing.assert_array_equal(bodies["hull"]["r_cm"], [0.1, 0, 0])
+    np.testing.assert_array_equal(np.diag(bodies["hull"]["J"]), [0.2, 0.3, 0.4])
+    x0 = free_body.initial_state(base={"w": [0.3, -0.2, 1.0], "v": [0.1, 0, 0.2]}, ball={"w": [0, 1.0, 2.0]})
+    tr = free_body.simulate(x0, np.linspace(0, 2, 5), atol=1e-11)
+    h = [free_body.momentum(x) for x in tr.x]
+    # no external force: both are constant, to the tolerance's order
+    for k in ("linear", "angular"):
+        assert np.abs(h[0][k]).max() > 0.1
+        assert max(np.abs(e[k] - h[0][k]).max() for e in h) < 1e-8

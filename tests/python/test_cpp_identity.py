@@ -56,3 +56,17 @@ def test_ensemble_cases_are_simulate_runs(reference, threads):
     np.testing.assert_array_equal(res.x, as_array(ref["x"]))
     np.testing.assert_array_equal(res.parameters["controller.kp"], as_array(ref["kp"]))
     assert res.parameters["m_load"].tolist() == [0.5] * 3
+
+
+@pytest.mark.parametrize("threads", [1, 0])
+def test_recorders_by_name_equal_the_cpp_recorders(reference, threads):
+    ref = reference["crane_recorders"]
+    x0 = as_array(reference["crane"]["x"])
+    res = crane.ensemble({"controller.kp": reference["crane_ensemble"]["kp"]}, as_array(reference["crane"]["times"]),
+                         x0=x0, atol=reference["crane"]["tolerance"], threads=threads,
+                         recorders={"swing": ("max_abs", "pivot.q", -np.pi / 2), "down": ("crossing", "pivot.v", 0.0, -1),
+                                    "settle": ("settling", "rail.q", -0.2, 0.05), "low": ("min", "rail.q"),
+                                    "final": ("final", "rail.q"), "energy": ("max", "energy")})
+    assert list(res.recorded) == ["swing", "down", "settle", "low", "final", "energy"]
+    for name, values in res.recorded.items():
+        np.testing.assert_array_equal(values, as_array(ref[name]), err_msg=name)

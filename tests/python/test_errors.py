@@ -102,3 +102,17 @@ def test_ensemble_input_errors():
         crane.ensemble({"mload": [1.0]}, [0.0, 1.0], x0=X)
     with pytest.raises(ValueError, match="an ensemble runs forward"):
         crane.ensemble({"m_load": [1.0]}, [1.0, 0.0], x0=X)
+
+
+def test_bad_recorders():
+    t = [0.0, 1.0]
+    with pytest.raises(KeyError, match='no state entry "pivot.vv"; did you mean "pivot.v"'):
+        crane.ensemble({"m_load": [1.0]}, t, x0=X, recorders={"a": ("max", "pivot.vv")})
+    with pytest.raises(ValueError, match='no recorder kind "maximum"'):
+        crane.ensemble({"m_load": [1.0]}, t, x0=X, recorders={"a": ("maximum", "pivot.q")})
+    with pytest.raises(ValueError, match='"settling" takes the level it settles about and the band'):
+        crane.ensemble({"m_load": [1.0]}, t, x0=X, recorders={"a": ("settling", "rail.q")})
+    with pytest.raises(ValueError, match="direction 2 is not"):
+        crane.ensemble({"m_load": [1.0]}, t, x0=X, recorders={"a": ("crossing", "rail.q", 0.0, 2)})
+    with pytest.raises(ValueError, match="is a tuple"):
+        crane.ensemble({"m_load": [1.0]}, t, x0=X, recorders={"a": "max"})

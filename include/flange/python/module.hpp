@@ -17,8 +17,9 @@
 //   derivative(t, x[, out])    x of shape (n_state,) or (k, n_state)
 //   jacobian(t, x)             ∂ẋ/∂x, exact (dual numbers)
 //   simulate(x0, times, method="dopri5" | "rosenbrock4", atol, rtol, dt, max_rhs_evals)
-//   recover(t, x), energy(x[, t])
-//   ensemble(cases, times, x0, …)   the C++ ensemble engine (oneTBB threads where built with it)
+//   recover(t, x), energy(x[, t]), momentum(x), bodies()
+//   ensemble(cases, times, x0, recorders, …)   the C++ ensemble engine (oneTBB threads where
+//                              built with it), recorders as python/recorders.hpp lists them
 // Module functions take params={name: value} for one call. Failures raise
 // the `flange` package's exceptions (python/flange/__init__.py):
 // SimulationError (time, state, reason), ParameterError (a ValueError),
@@ -41,6 +42,7 @@
 #include "flange/ensemble/ensemble.hpp"
 #include "flange/flange.hpp"
 #include "flange/python/parameters.hpp"
+#include "flange/python/recorders.hpp"
 #include "flange/simulate/rosenbrock4.hpp"
 #ifdef FLANGE_PYTHON_TBB
 #include "flange/ensemble/tbb.hpp"
@@ -392,6 +394,28 @@ struct bound {
     return d;
   }
 
+  [[nodiscard]] py::dict momentum(py::handle x_in) const {
+    const X x = one_state<X>(x_in, "x");
+    const auto h = flange::momentum(scene, x);
+    py::dict d;
+    d["linear"] = array_of(h.linear);
+    d["angular"] = array_of(h.angular);
+    return d;
+  }
+
+  [[nodiscard]] py::list bodies() const {
+    py::list l;
+    for (const auto& b : flange::bodies(scene)) {
+      py::dict d;
+      d["name"] = std::string(b.name);
+      d["m"] = b.m;
+      d["r_cm"] = array_of(b.r_cm);
+      d["J"] = matrix_of(b.J);
+      l.append(d);
+    }
+    return l;
+  }
+
   [[nodiscard]] py::dict recover(double t, py::handle x_in) const {
     require_finite_time(t, "t");
     const X x = one_state<X>(x_in, "x");
@@ -477,9 +501,69 @@ py::object simulate(const B& b, py::handle x0_in, py::handle times_in, const std
                               tr.steps, tr.rhs_evals);
 }
 
+/// The state's entries by name: "elbow.q", "base.q[3]", "base.v[0]", …
+template <class S>
+std::vector<std::string> state_names() {
+  std::vector<std::string> names(S::n_state);
+  for (int c = 0; c < S::n_components; ++c) {
+    if (S::tree.q_offset[c] < 0) continue;
+    const auto label = [&](const char* what, int n, int i) {
+      return concat(S::table.names[c], ".", what, n > 1 ? concat("[", i, "]") : "");
+    };
+    for (int i = 0; i < S::table.nq[c]; ++i) names[S::tree.q_offset[c] + i] = label("q", S::table.nq[c], i);
+    for (int i = 0; i < S::table.nv[c]; ++i) names[S::n_q + S::tree.v_offset[c] + i] = label("v", S::table.nv[c], i);
+  }
+  return names;
+}
+
+/// The recorders a Python dict asks for: {name: (kind, quantity, numbers…)}.
+template <class S>
+recorder_set recorders_of(py::handle in, std::vector<std::string>& names) {
+  recorder_set set;
+  if (in.is_none()) return set;
+  if (!py::isinstance<py::dict>(in))
+    throw parameter_error("flange: ensemble: recorders is a dict {name: (kind, quantity, numbers…)}");
+  const auto states = state_names<S>();
+  for (auto [k, spec] : py::reinterpret_borrow<py::dict>(in)) {
+    const std::string name = py::str(k);
+    if (set.n == max_recorders)
+      throw parameter_error(concat("flange: ensemble: at most ", max_recorders, " recorders"));
+    if (!py::isinstance<py::tuple>(spec) || py::len(spec) < 2)
+      throw parameter_error(concat("flange: ensemble: recorder \"", name, "\" is a tuple (kind, quantity, numbers…), ",
+                                   "such as (\"max_abs\", \"pivot.q\", -1.57)"));
+    const auto t = py::reinterpret_borrow<py::tuple>(spec);
+    const std::string kind = py::str(t[0]), of = py::str(t[1]);
+    quantity q;
+    if (of != "energy") {
+      const auto it = std::find(states.begin(), states.end(), of);
+      if (it == states.end()) {
+        auto options = states;
+        options.push_back("energy");
+        throw unknown_name(concat("flange: ensemble: recorder \"", name, "\": the scene has no state entry \"", of,
+                                  "\"; did you mean \"", options[flange::detail::closest_name(of, options)], "\"?"));
+      }
+      q.index = int(it - states.begin());
+    }
+    std::array<double, 4> args{};
+    const int n_args = int(py::len(t)) - 2;
+    if (n_args > int(args.size())) throw parameter_error(concat("flange: ensemble: recorder \"", name, "\": too many numbers"));
+    for (int i = 0; i < n_args; ++i) {
+      try {
+        args[i] = py::cast<double>(t[i + 2]);
+      } catch (const py::cast_error&) {
+        throw parameter_error(concat("flange: ensemble: recorder \"", name, "\": argument ", i + 3, " is not a number"));
+      }
+    }
+    set.recs[set.n++] = make_recorder(kind, q, args.data(), n_args);
+    names.push_back(name);
+  }
+  return set;
+}
+
 template <class B>
-py::object ensemble(py::handle cases_in, py::handle times_in, py::handle x0_in, const std::string& method, double atol,
-                    const py::object& rtol, double dt, long max_rhs_evals, int threads) {
+py::object ensemble(py::handle cases_in, py::handle times_in, py::handle x0_in, py::handle recorders_in,
+                    const std::string& method, double atol, const py::object& rtol, double dt, long max_rhs_evals,
+                    int threads) {
   using S = typename B::S;
   using X = typename B::X;
   using P = decltype(B::params);
@@ -488,6 +572,8 @@ py::object ensemble(py::handle cases_in, py::handle times_in, py::handle x0_in, 
   if (!(times.back() > times.front()))
     throw parameter_error("flange: ensemble: the times must increase (an ensemble runs forward)");
   const simulate_options o = options_of(atol, rtol, dt, max_rhs_evals);
+  std::vector<std::string> recorder_names;
+  const recorder_set recorders = recorders_of<S>(recorders_in, recorder_names);
   // the cases: each parameter named in `cases` from its array, the others at their defaults
   std::size_t k = 0;
   std::vector<std::pair<std::string, f64>> columns;
@@ -536,12 +622,13 @@ py::object ensemble(py::handle cases_in, py::handle times_in, py::handle x0_in, 
   std::vector<std::string> reason(k);
   std::vector<double> fail_time(k), fail_state(k * S::n_state);
   std::vector<long> steps(k), evals(k);
+  std::vector<double> recorded(k * max_recorders);
   {
     py::gil_scoped_release free;
     with_method(method, [&](auto m) {
       const auto study =
           ensemble::make_with<decltype(m)>(setup, times.front(), times.back(), o,
-                                           ensemble::states_at(times.data(), n_t, xs.data()));
+                                           ensemble::states_at(times.data(), n_t, xs.data()), recorders);
       const ensemble::run_options ro{.progress_line = ensemble::run_options::show::never};
       const auto collect = [&](auto first, auto last) {
         for (auto it = first; it != last; ++it) {
@@ -552,6 +639,7 @@ py::object ensemble(py::handle cases_in, py::handle times_in, py::handle x0_in, 
           std::copy(it->fail_state.begin(), it->fail_state.end(), fail_state.begin() + long(i * S::n_state));
           steps[i] = it->steps;
           evals[i] = it->rhs_evals;
+          std::copy(it->values.begin(), it->values.end(), recorded.begin() + long(i * max_recorders));
         }
       };
 #ifdef FLANGE_PYTHON_TBB
@@ -571,13 +659,19 @@ py::object ensemble(py::handle cases_in, py::handle times_in, py::handle x0_in, 
     for (std::size_t i = 0; i < k; ++i) col.mutable_data()[i] = parameter_values(params[i])[j];
     parameters[py::str(names[j])] = col;
   }
+  py::dict recorded_d;
+  for (std::size_t j = 0; j < recorder_names.size(); ++j) {
+    py::array_t<double> col(static_cast<py::ssize_t>(k));
+    for (std::size_t i = 0; i < k; ++i) col.mutable_data()[i] = recorded[i * max_recorders + j];
+    recorded_d[py::str(recorder_names[j])] = col;
+  }
   py::array_t<bool> ok_a(static_cast<py::ssize_t>(k));
   for (std::size_t i = 0; i < k; ++i) ok_a.mutable_data()[i] = ok[i] != 0;
   const auto n = py::ssize_t(S::n_state), kk = py::ssize_t(k);
   return classes().ensemble_result(array_of(times), own(std::move(xs), {kk, py::ssize_t(n_t), n}), ok_a, reason,
                                    own(std::move(fail_time), {kk}), own(std::move(fail_state), {kk, n}),
                                    py::array_t<long>(kk, steps.data()), py::array_t<long>(kk, evals.data()),
-                                   parameters);
+                                   parameters, recorded_d);
 }
 
 }  // namespace detail
@@ -608,16 +702,7 @@ void bind(py::module_& m, Factory) {
     d["v"] = py::slice(S::n_q + S::tree.v_offset[c], S::n_q + S::tree.v_offset[c] + S::table.nv[c], 1);
     layout[py::str(name)] = d;
   }
-  std::vector<std::string> names(S::n_state);
-  for (int c = 0; c < S::n_components; ++c) {
-    if (S::tree.q_offset[c] < 0) continue;
-    const auto label = [&](const char* what, int n, int i) {
-      return detail::concat(S::table.names[c], ".", what, n > 1 ? detail::concat("[", i, "]") : "");
-    };
-    for (int i = 0; i < S::table.nq[c]; ++i) names[S::tree.q_offset[c] + i] = label("q", S::table.nq[c], i);
-    for (int i = 0; i < S::table.nv[c]; ++i) names[S::n_q + S::tree.v_offset[c] + i] = label("v", S::table.nv[c], i);
-  }
-  for (const auto& n : names) state_names.append(n);
+  for (const auto& n : detail::state_names<S>()) state_names.append(n);
   m.attr("joints") = joints;
   m.attr("state_names") = state_names;
   m.attr("joint_layout") = layout;
@@ -670,6 +755,13 @@ void bind(py::module_& m, Factory) {
   m.def("energy", [at, pick](py::handle x, double t, const py::object& params) { return pick(at(params)).energy(x, t); },
         py::arg("x"), py::arg("t") = 0.0, py::arg("params") = py::none(), "Kinetic and potential energy at x.");
 
+  cls.def("momentum", &B::momentum, py::arg("x"), "The linear and angular momentum (world frame, about its origin).");
+  m.def("momentum", [at, pick](py::handle x, const py::object& params) { return pick(at(params)).momentum(x); },
+        py::arg("x"), py::arg("params") = py::none(), "The linear and angular momentum (world frame, about its origin).");
+  cls.def("bodies", &B::bodies, "Every body: name, mass m, centre of mass r_cm (in its frame_a), inertia J.");
+  m.def("bodies", [at, pick](const py::object& params) { return pick(at(params)).bodies(); },
+        py::arg("params") = py::none(), "Every body: name, mass m, centre of mass r_cm (in its frame_a), inertia J.");
+
   cls.def("recover", &B::recover, py::arg("t"), py::arg("x"), "Every frame and internal variable at (t, x).");
   m.def("recover", [at, pick](double t, py::handle x, const py::object& params) { return pick(at(params)).recover(t, x); },
         py::arg("t"), py::arg("x"), py::arg("params") = py::none(), "Every frame and internal variable at (t, x).");
@@ -688,7 +780,7 @@ void bind(py::module_& m, Factory) {
         py::arg("params") = py::none(), sim_doc);
 
   m.def("ensemble", &detail::ensemble<B>, py::arg("cases"), py::arg("times"), py::arg("x0") = py::none(),
-        py::arg("method") = "dopri5", py::arg("atol") = 1e-8, py::arg("rtol") = py::none(), py::arg("dt") = 1e-3,
+        py::arg("recorders") = py::none(), py::arg("method") = "dopri5", py::arg("atol") = 1e-8, py::arg("rtol") = py::none(), py::arg("dt") = 1e-3,
         py::arg("max_rhs_evals") = 10'000'000L, py::arg("threads") = 0,
         "Many runs at run-time parameters (cases: {name: values}), each as simulate() runs it; "
         "failures are recorded per case.");
