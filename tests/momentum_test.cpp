@@ -138,6 +138,20 @@ TEST_CASE("a free body set by its centre-of-mass velocity moves its centre of ma
   CHECK_THROWS_WITH(set_joint<"fly">(s, y, {.v_cm = Vec3d(0, NAN, 0)}), Catch::Contains("v_cm is not finite"));
 }
 
+TEST_CASE("a centre-of-mass velocity for a joint that carries no mass is refused, naming the joint") {
+  // "probe" carries only a frame; the body hangs from the world through its own joint
+  const auto s = scene(World<"world">({.g = {0, 0, 0}}), FreeMotion<"probe">{},
+                       FixedTranslation<"tip">({.d = {0.1, 0, 0}}), FreeMotion<"fly">{},
+                       Body<"b">({.m = 1.0, .J = Mat3d::Identity()}), connect<"world.frame_b", "probe.frame_a">,
+                       connect<"probe.frame_b", "tip.frame_a">, connect<"world.frame_b", "fly.frame_a">,
+                       connect<"fly.frame_b", "b.frame_a">);
+  CHECK_THROWS_WITH((initial_state<"probe">(s, {.v_cm = Vec3d(1, 0, 0)})),
+                    Catch::Contains("FreeMotion \"probe\"") && Catch::Contains("carries no mass"));
+  // the other joint, which carries the body, takes one
+  const auto x = initial_state<"fly">(s, {.v_cm = Vec3d(1, 0, 0)});
+  CHECK((momentum(s, x).linear - Vec3d(1, 0, 0)).norm() < 1e-15);
+}
+
 TEST_CASE("a floating tree set by its centre-of-mass velocity: the whole tree's, with the joints' rates as given") {
   const auto s = floating_tree(9.81);
   const Vec3d v_cm(0.4, -0.3, 1.5), w(0.7, 0.2, -1.1);

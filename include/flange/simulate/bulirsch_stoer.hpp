@@ -9,15 +9,10 @@
 // special functions (factorials, binomials, gamma), about 0.5 s of compile
 // time in every unit that includes it.
 #pragma once
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
+#include "flange/detail/odeint_warnings.hpp"
+FLANGE_ODEINT_INCLUDES_BEGIN
 #include <boost/numeric/odeint/stepper/bulirsch_stoer_dense_out.hpp>
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+FLANGE_ODEINT_INCLUDES_END
 
 #include "flange/simulate/method.hpp"
 

@@ -19,14 +19,8 @@
 // record(scene, f) makes an observer that hands f the recovered solution (all
 // DAE variables, cut forces, energy) at every observed time.
 #pragma once
-// Odeint's steppers copy their scratch buffers before first writing them, and
-// GCC 12 flags those copies (-Wuninitialized) at their location in Odeint's
-// headers. The pragma covers only those headers, not flange or user code.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
+#include "flange/detail/odeint_warnings.hpp"
+FLANGE_ODEINT_INCLUDES_BEGIN
 #include <boost/numeric/odeint/integrate/integrate.hpp>
 #include <boost/numeric/odeint/integrate/integrate_adaptive.hpp>
 #include <boost/numeric/odeint/integrate/integrate_const.hpp>
@@ -41,9 +35,7 @@
 #include <boost/numeric/odeint/stepper/runge_kutta_fehlberg78.hpp>
 // Odeint's Eigen support needs the core before it.
 #include <boost/numeric/odeint/external/eigen/eigen.hpp>
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+FLANGE_ODEINT_INCLUDES_END
 
 #include "flange/dynamics/recover.hpp"
 #include "flange/simulate/system.hpp"
