@@ -98,7 +98,7 @@ inline any_recorder make_recorder(std::string_view kind, quantity q, const doubl
   const auto arg = [&](int i, double fallback) { return i < n_args ? args[i] : fallback; };
   const auto at_most = [&](int n) {
     if (n_args > n)
-      throw parameter_error(detail::concat("flange: recorder \"", kind, "\" takes ", n, " number(s) after the quantity, not ",
+      throw parameter_error(flange::detail::concat("flange: recorder \"", kind, "\" takes ", n, " number(s) after the quantity, not ",
                                            n_args));
   };
   any_recorder a;
@@ -119,7 +119,7 @@ inline any_recorder make_recorder(std::string_view kind, quantity q, const doubl
     q.level = arg(0, 0.0);
     const double dir = arg(1, 0.0);
     if (dir != -1 && dir != 0 && dir != 1)
-      throw parameter_error(detail::concat("flange: recorder \"crossing\": direction ", dir, " is not −1, 0 or +1"));
+      throw parameter_error(flange::detail::concat("flange: recorder \"crossing\": direction ", dir, " is not −1, 0 or +1"));
     a.r = crossing_of<quantity>{{"", q}, static_cast<int>(dir)};
   } else if (kind == "settling") {
     if (n_args != 2)
@@ -127,10 +127,10 @@ inline any_recorder make_recorder(std::string_view kind, quantity q, const doubl
                             "(\"settling\", quantity, about, band)");
     q.level = args[0];
     if (!(args[1] >= 0))
-      throw parameter_error(detail::concat("flange: recorder \"settling\": band ", args[1], " must be ≥ 0"));
+      throw parameter_error(flange::detail::concat("flange: recorder \"settling\": band ", args[1], " must be ≥ 0"));
     a.r = settling_of<quantity>{{"", q}, args[1]};
   } else {
-    throw parameter_error(detail::concat("flange: no recorder kind \"", kind,
+    throw parameter_error(flange::detail::concat("flange: no recorder kind \"", kind,
                                          "\"; the kinds are final, max, min, max_abs, crossing, settling"));
   }
   return a;
