@@ -417,19 +417,24 @@ py::object ensemble(py::handle cases_in, py::handle times_in, py::handle x0_in, 
       return 0;
     });
   }
-  py::dict parameters;
+  // column j of a table of k rows of `width` numbers, as a dict entry per name
+  const auto columns_of = [k](const std::vector<std::string>& names, const std::vector<double>& table,
+                              std::size_t width) {
+    py::dict d;
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      py::array_t<double> col(static_cast<py::ssize_t>(k));
+      for (std::size_t i = 0; i < k; ++i) col.mutable_data()[i] = table[i * width + j];
+      d[py::str(names[j])] = col;
+    }
+    return d;
+  };
   const auto names = parameter_names<P>();
-  for (std::size_t j = 0; j < names.size(); ++j) {
-    py::array_t<double> col(static_cast<py::ssize_t>(k));
-    for (std::size_t i = 0; i < k; ++i) col.mutable_data()[i] = parameter_values(params[i])[j];
-    parameters[py::str(names[j])] = col;
-  }
-  py::dict recorded_d;
-  for (std::size_t j = 0; j < recorder_names.size(); ++j) {
-    py::array_t<double> col(static_cast<py::ssize_t>(k));
-    for (std::size_t i = 0; i < k; ++i) col.mutable_data()[i] = recorded[i * max_recorders + j];
-    recorded_d[py::str(recorder_names[j])] = col;
-  }
+  std::vector<double> values;  // each case's parameters, a row a case
+  values.reserve(k * names.size());
+  for (const auto& p : params)
+    for (double v : parameter_values(p)) values.push_back(v);
+  const py::dict parameters = columns_of(names, values, names.size());
+  const py::dict recorded_d = columns_of(recorder_names, recorded, max_recorders);
   py::array_t<bool> ok_a(static_cast<py::ssize_t>(k));
   for (std::size_t i = 0; i < k; ++i) ok_a.mutable_data()[i] = ok[i] != 0;
   const auto n = py::ssize_t(S::n_state), kk = py::ssize_t(k);
