@@ -23,6 +23,14 @@
 #
 # Needs Debian's pybind11-dev and python3-dev (tools/install-deps.sh --python).
 # oneTBB, where found, runs ensembles on threads.
+#
+#   flange_find_python()
+#
+# finds Python 3 (interpreter and headers) as find_package(Python3) does, but
+# when Python3_EXECUTABLE is not given it takes the first interpreter that can
+# import numpy: `python3` on PATH, else Debian's /usr/bin/python3. A pyenv or
+# virtualenv interpreter first on PATH often lacks numpy, which the modules
+# import; Debian's python3-numpy is installed for /usr/bin/python3.
 
 # The `flange` package: installed, flangeConfig.cmake says where; in the
 # source tree, python/flange.
@@ -31,6 +39,28 @@ if(FLANGE_PYTHON_PACKAGE_DIR)
 else()
   set(_FLANGE_PYTHON_PACKAGE_DIR "${CMAKE_CURRENT_LIST_DIR}/../python/flange")
 endif()
+
+macro(flange_find_python)
+  if(NOT Python3_EXECUTABLE)
+    find_program(_flange_python_on_path NAMES python3 NO_CACHE)
+    foreach(_flange_python IN ITEMS ${_flange_python_on_path} /usr/bin/python3)
+      if(EXISTS "${_flange_python}")
+        execute_process(COMMAND "${_flange_python}" -c "import numpy"
+                        RESULT_VARIABLE _flange_no_numpy OUTPUT_QUIET ERROR_QUIET)
+        if(_flange_no_numpy EQUAL 0)
+          set(Python3_EXECUTABLE "${_flange_python}" CACHE FILEPATH
+              "the Python 3 interpreter the flange modules are built for (one with numpy)")
+          break()
+        endif()
+      endif()
+    endforeach()
+    if(NOT Python3_EXECUTABLE)
+      message(STATUS "flange: no Python 3 interpreter here imports numpy (apt-get install python3-numpy); "
+                     "the modules build, but importing them needs numpy")
+    endif()
+  endif()
+  find_package(Python3 QUIET COMPONENTS Interpreter Development.Module)
+endmacro()
 
 function(flange_add_python_module)
   cmake_parse_arguments(FP "TIMING" "NAME;SCENE;FACTORY;PARAMETERS;OUTPUT_DIRECTORY" "" ${ARGN})
@@ -41,7 +71,11 @@ function(flange_add_python_module)
     endif()
   endforeach()
   if(NOT TARGET pybind11::module)
-    find_package(Python3 REQUIRED COMPONENTS Interpreter Development.Module)
+    flange_find_python()
+    if(NOT Python3_FOUND)
+      message(FATAL_ERROR "flange_add_python_module: Python 3's interpreter and headers not found "
+                          "(apt-get install python3-dev, or tools/install-deps.sh --python)")
+    endif()
     find_package(pybind11 CONFIG REQUIRED)
   endif()
   if(NOT FP_OUTPUT_DIRECTORY)
