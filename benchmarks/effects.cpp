@@ -9,7 +9,8 @@
 // form (benchmarks/handwritten.hpp), or "-" where none is practical.
 //
 // Effects: gravity (World with gravity, or gravity_kind::none), damper (a
-// spring-damper law on every joint axis, or none), unaligned_axis (axis::any
+// spring-damper law on every joint axis, or none), stops (axis_law::limited
+// stops at ±2 rad, the joint between them, or none), unaligned_axis (axis::any
 // holding the same direction, or axis::z), rigid_body (bodies with
 // rotational inertia, or point masses), spatial (the spatial algorithm forced
 // on a planar scene, or the planar arithmetic its types select),
@@ -42,6 +43,8 @@ auto arm() {
   auto joint = [] {
     using R = Revolute<"joint", Axis, Law>;
     if constexpr (std::is_same_v<Law, axis_law::spring_damper>) return R({.n = Vec3d::UnitZ(), .c = 0.0, .d = damping});
+    else if constexpr (std::is_same_v<Law, axis_law::limited<>>)
+      return R({.stop = {.lower = -2.0, .upper = 2.0, .stiffness = 1e4, .dissipation = 0.1}});
     else if constexpr (Axis::fixed) return R{};
     else return R({.n = Vec3d::UnitZ()});
   };
@@ -162,6 +165,8 @@ void register_all() {
   effect("robot_arm", "gravity", arm(), arm<gravity_kind::none>(), bench::handwritten_arm_no_gravity{arm_p, Mz}, xa);
   effect("robot_arm", "damper", arm<gravity_kind::uniform, axis_law::spring_damper>(), arm(), hw_arm, xa);
   effect("robot_arm", "unaligned_axis", arm<gravity_kind::uniform, axis_law::none, axis::any>(), arm(), hw_arm, xa);
+  // Stops at ±2 rad: at xa the joint is between them, so the cost is the two comparisons.
+  effect("robot_arm", "stops", arm<gravity_kind::uniform, axis_law::limited<>>(), arm(), hw_arm, xa);
   auto point_p = arm_p;
   point_p.Jz = 0;
   effect("robot_arm", "rigid_body", arm(),

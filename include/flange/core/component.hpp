@@ -60,6 +60,14 @@ concept Component = requires {
 template <class C>
 inline constexpr bool carries_body = requires { requires C::carries_body; };
 
+/// The argument of a component's "all defaults" constructor,
+/// C(std::initializer_list<all_defaults>), beside its default constructor:
+/// with a default constructor alone, C({}) is ambiguous (the parameters from
+/// {}, or a copy of C{}); an empty list converts to an initializer_list
+/// exactly, so C({}) takes this one. C{}, C({}) and C are then all the
+/// component with every parameter defaulted.
+struct all_defaults {};
+
 // ------------------------------------------------------------ inputs
 
 /// The input type of a joint without a drive: it has no input, and its

@@ -379,6 +379,32 @@ struct function_node : node {
   }
 };
 
+/// f(a, b) for a function object f of two scalars with a static `name`
+/// (a joint stop's piecewise force), printed name(a, b).
+template <class F, class A, class B>
+struct call_node : node {
+  static_assert(A::sh == shape::scalar && B::sh == shape::scalar, "flange: call() takes scalars");
+  static constexpr shape sh = shape::scalar;
+  static constexpr int prec = prec_atom;
+  F f;
+  A a;
+  B b;
+  call_node(F fn, A x, B y) : f(std::move(fn)), a(std::move(x)), b(std::move(y)) {}
+  template <class C>
+  auto eval(const C& c) const {
+    using T = typename C::scalar;
+    return f(T(a.eval(c)), T(b.eval(c)));
+  }
+  template <class P>
+  void print(std::ostream& os, const P& p) const {
+    os << F::name << '(';
+    a.print(os, p);
+    os << ", ";
+    b.print(os, p);
+    os << ')';
+  }
+};
+
 template <Expr A, Expr B> auto operator+(A a, B b) { return binary<ops::plus, A, B>(std::move(a), std::move(b)); }
 template <Expr A, Expr B> auto operator-(A a, B b) { return binary<ops::minus, A, B>(std::move(a), std::move(b)); }
 template <Expr A> auto operator-(A a) { return neg<A>(std::move(a)); }
@@ -390,6 +416,7 @@ template <Expr A> auto tilde(A a) { return tilde_node<A>(std::move(a)); }
 template <Expr A> auto sin(A a) { return function_node<A, function::sin>(std::move(a)); }
 template <Expr A> auto cos(A a) { return function_node<A, function::cos>(std::move(a)); }
 template <Expr A> auto tanh(A a) { return function_node<A, function::tanh>(std::move(a)); }
+template <class F, Expr A, Expr B> auto call(F f, A a, B b) { return call_node<F, A, B>(std::move(f), std::move(a), std::move(b)); }
 
 // ---------------------------------------------------------------- equations
 

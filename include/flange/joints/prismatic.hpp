@@ -12,13 +12,16 @@
 // Prismatic<"rail", axis::x, double, axis_law::spring_damper> or
 // axis_law::friction adds a law along the axis (joints/axis_law.hpp); the last
 // equation becomes  f − (c·(s − s0) + d·ṡ) = −F₂·n, or
-// f − (d·ṡ + F_c·tanh(ṡ / v_s)) = −F₂·n.
+// f − (d·ṡ + F_c·tanh(ṡ / v_s)) = −F₂·n. axis_law::limited<Law> adds a
+// compliant stop at each bound of s (`.stop = {.lower, .upper, .stiffness,
+// .dissipation}`, joints/axis_law.hpp).
 //
 // Motion (core/joint.hpp): nq = nv = 1, q = s, v = ṡ. No rotation (E = 1),
 // the child origin at p = σ·s·n, S = (0, σ·n), no bias; σ = −1 when the joint
 // is connected frame_b toward the World.
 #pragma once
 #include <array>
+#include <initializer_list>
 
 #include <boost/hana/tuple.hpp>
 
@@ -45,30 +48,34 @@ template <class Force>
 using prismatic_force_slot = input_slot<Force, diagnostic::prismatic_input_type_not_given>;
 // The parameters: the axis n (a run-time axis only), the force input f, and
 // the axis law's numbers.
-template <class Axis, class Force, class Law>
+template <class Axis, class Force, class Law, class Stop>
 struct prismatic_params {
   Vec3d n = Vec3d::UnitX();
   prismatic_force_slot<Force> f{};
+  [[no_unique_address]] Stop stop{};  ///< the stops, with axis_law::limited
 };
-template <int I, class Force>
-struct prismatic_params<axis::coordinate<I>, Force, axis_law::none> {
+template <int I, class Force, class Stop>
+struct prismatic_params<axis::coordinate<I>, Force, axis_law::none, Stop> {
   prismatic_force_slot<Force> f{};
+  [[no_unique_address]] Stop stop{};  ///< the stops, with axis_law::limited
 };
-template <class Axis, class Force>
-struct prismatic_params<Axis, Force, axis_law::spring_damper> {
+template <class Axis, class Force, class Stop>
+struct prismatic_params<Axis, Force, axis_law::spring_damper, Stop> {
   Vec3d n = Vec3d::UnitX();  ///< ignored for a compile-time axis
   prismatic_force_slot<Force> f{};
   double c = 0;   ///< stiffness [N/m]
   double d = 0;   ///< damping [N s/m]
   double s0 = 0;  ///< rest position [m]
+  [[no_unique_address]] Stop stop{};  ///< the stops, with axis_law::limited
 };
-template <class Axis, class Force>
-struct prismatic_params<Axis, Force, axis_law::friction> {
+template <class Axis, class Force, class Stop>
+struct prismatic_params<Axis, Force, axis_law::friction, Stop> {
   Vec3d n = Vec3d::UnitX();  ///< ignored for a compile-time axis
   prismatic_force_slot<Force> f{};
   double d = 0;       ///< viscous friction [N s/m]
   double f_c = 0;     ///< Coulomb friction force [N]
   double v_s = 1e-3;  ///< regularisation speed [m/s]: tanh(ṡ / v_s)
+  [[no_unique_address]] Stop stop{};  ///< the stops, with axis_law::limited
 };
 
 /// A prismatic joint's motion (core/joint.hpp): E = 1, p = σ·s·n, S = (0, σ·n).
@@ -133,13 +140,16 @@ class Prismatic {
   /// Closing a loop, it leaves the translation along n free.
   static constexpr cut_freedom as_cut{.rotations = 0, .translations = 1};
 
-  using params = detail::prismatic_params<Axis, Force, Law>;
+  using params = detail::prismatic_params<Axis, Force, detail::inner_law<Law>, detail::stop_field<Law>>;
 
+  /// Prismatic<…>{} and Prismatic<…>({}): every parameter defaulted (all_defaults).
+  Prismatic() : Prismatic(params{}) {}
+  Prismatic(std::initializer_list<all_defaults>) : Prismatic(params{}) {}
   explicit Prismatic(params p) : f_(take_input(std::move(p.f))) {
     if constexpr (Axis::fixed) n_ = Axis::unit();
     else n_ = detail::unit_axis(name.view(), "Prismatic", p.n);
     if constexpr (std::is_arithmetic_v<Force>) detail::require_finite(name.view(), "Prismatic", "f", f_);
-    if constexpr (std::is_same_v<Law, axis_law::spring_damper>)
+    if constexpr (std::is_same_v<detail::inner_law<Law>, axis_law::spring_damper>)
       law_ = detail::make_axis_law<Law>(name.view(), "Prismatic", p, p.s0);
     else if constexpr (has_law) law_ = detail::make_axis_law<Law>(name.view(), "Prismatic", p, 0.0);
   }

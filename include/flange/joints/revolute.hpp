@@ -45,8 +45,15 @@
 //
 // Below |φ̇| ≈ v_s the joint creeps instead of sticking; choose v_s well below
 // the speeds that matter (default 1e-3 rad/s).
+//
+// Revolute<"elbow", axis::z, axis_law::limited<>> stops the joint at a lower
+// and an upper angle, with a compliant stop (Simbody's MobilityLinearStop,
+// joints/axis_law.hpp): {.stop = {.lower = -2, .upper = 2, .stiffness = 1e4,
+// .dissipation = 0.1}}. axis_law::limited<axis_law::friction> (or
+// spring_damper) keeps that law and adds the stops.
 #pragma once
 #include <array>
+#include <initializer_list>
 #include <cmath>
 
 #include <boost/hana/tuple.hpp>
@@ -74,52 +81,61 @@ struct revolute_input_type_not_given {
 namespace detail {
 template <class Tau>
 using revolute_torque_slot = input_slot<Tau, diagnostic::revolute_input_type_not_given>;
-template <class Axis, class Law>
+template <class Axis, class Law, class Stop>
 struct revolute_params {
   Vec3d n = Vec3d::UnitZ();
+  [[no_unique_address]] Stop stop{};  ///< the stops, with axis_law::limited
 };
-template <int I>
-struct revolute_params<axis::coordinate<I>, axis_law::none> {};
-template <class Axis>
-struct revolute_params<Axis, axis_law::spring_damper> {
+template <int I, class Stop>
+struct revolute_params<axis::coordinate<I>, axis_law::none, Stop> {
+  [[no_unique_address]] Stop stop{};  ///< the stops, with axis_law::limited
+};
+template <class Axis, class Stop>
+struct revolute_params<Axis, axis_law::spring_damper, Stop> {
   Vec3d n = Vec3d::UnitZ();  ///< ignored for a compile-time axis
   double c = 0;              ///< stiffness [N m/rad]
   double d = 0;              ///< damping [N m s/rad]
   double phi0 = 0;           ///< rest angle [rad]
+  [[no_unique_address]] Stop stop{};  ///< the stops, with axis_law::limited
 };
-template <class Axis>
-struct revolute_params<Axis, axis_law::friction> {
+template <class Axis, class Stop>
+struct revolute_params<Axis, axis_law::friction, Stop> {
   Vec3d n = Vec3d::UnitZ();  ///< ignored for a compile-time axis
   double d = 0;              ///< viscous friction [N m s/rad]
   double f_c = 0;            ///< Coulomb friction torque [N m]
   double v_s = 1e-3;         ///< regularisation speed [rad/s]: tanh(φ̇ / v_s)
+  [[no_unique_address]] Stop stop{};  ///< the stops, with axis_law::limited
 };
 
 /// The parameters of a driven joint: the same, and the torque input τ.
-template <class Axis, class Law, class Tau>
+template <class Axis, class Law, class Tau, class Stop>
 struct revolute_driven_params {
   Vec3d n = Vec3d::UnitZ();  ///< ignored for a compile-time axis
   revolute_torque_slot<Tau> tau{};  ///< the drive's torque about the axis [N m]
+  [[no_unique_address]] Stop stop{};  ///< the stops, with axis_law::limited
 };
-template <int I, class Tau>
-struct revolute_driven_params<axis::coordinate<I>, axis_law::none, Tau> {
+template <int I, class Tau, class Stop>
+struct revolute_driven_params<axis::coordinate<I>, axis_law::none, Tau, Stop> {
   revolute_torque_slot<Tau> tau{};  ///< the drive's torque about the axis [N m]
+  [[no_unique_address]] Stop stop{};  ///< the stops, with axis_law::limited
 };
-template <class Axis, class Tau>
-struct revolute_driven_params<Axis, axis_law::spring_damper, Tau> {
+template <class Axis, class Tau, class Stop>
+struct revolute_driven_params<Axis, axis_law::spring_damper, Tau, Stop> {
   Vec3d n = Vec3d::UnitZ();  ///< ignored for a compile-time axis
   revolute_torque_slot<Tau> tau{};  ///< the drive's torque about the axis [N m]
   double c = 0;              ///< stiffness [N m/rad]
   double d = 0;              ///< damping [N m s/rad]
   double phi0 = 0;           ///< rest angle [rad]
+  [[no_unique_address]] Stop stop{};  ///< the stops, with axis_law::limited
 };
-template <class Axis, class Tau>
-struct revolute_driven_params<Axis, axis_law::friction, Tau> {
+template <class Axis, class Tau, class Stop>
+struct revolute_driven_params<Axis, axis_law::friction, Tau, Stop> {
   Vec3d n = Vec3d::UnitZ();  ///< ignored for a compile-time axis
   revolute_torque_slot<Tau> tau{};  ///< the drive's torque about the axis [N m]
   double d = 0;              ///< viscous friction [N m s/rad]
   double f_c = 0;            ///< Coulomb friction torque [N m]
   double v_s = 1e-3;         ///< regularisation speed [rad/s]: tanh(φ̇ / v_s)
+  [[no_unique_address]] Stop stop{};  ///< the stops, with axis_law::limited
 };
 
 /// A revolute joint's motion (core/joint.hpp): E = R_rel(σ·n, φ), S = (σ·n, 0).
@@ -171,9 +187,10 @@ class Revolute {
   static constexpr std::array<std::string_view, 2> frames{"frame_a", "frame_b"};
   static constexpr std::array<internal_decl, 2> internals{
       {{"φ", expr::var_kind::scalar}, {"R_rel", expr::var_kind::rot}}};
-  static constexpr bool has_spring_damper = std::is_same_v<Law, axis_law::spring_damper>;
-  static constexpr bool has_friction = std::is_same_v<Law, axis_law::friction>;
-  static constexpr bool has_law = has_spring_damper || has_friction;
+  static constexpr bool has_spring_damper = std::is_same_v<detail::inner_law<Law>, axis_law::spring_damper>;
+  static constexpr bool has_friction = std::is_same_v<detail::inner_law<Law>, axis_law::friction>;
+  static constexpr bool has_stops = detail::law_parts<Law>::stops;
+  static constexpr bool has_law = has_spring_damper || has_friction || has_stops;
   static constexpr bool driven = !std::is_same_v<Tau, undriven>;
 
   // ---------------------------------------------------------- motion
@@ -187,16 +204,19 @@ class Revolute {
   /// Closing a loop, it leaves the rotation about n free.
   static constexpr cut_freedom as_cut{.rotations = 1, .translations = 0};
 
-  using params = std::conditional_t<driven, detail::revolute_driven_params<Axis, Law, Tau>,
-                                    detail::revolute_params<Axis, Law>>;
+  using params = std::conditional_t<driven,
+                                    detail::revolute_driven_params<Axis, detail::inner_law<Law>, Tau, detail::stop_field<Law>>,
+                                    detail::revolute_params<Axis, detail::inner_law<Law>, detail::stop_field<Law>>>;
 
+  /// Revolute<…>{} and Revolute<…>({}): every parameter defaulted (all_defaults).
   Revolute() : Revolute(params{}) {}
+  Revolute(std::initializer_list<all_defaults>) : Revolute(params{}) {}
   explicit Revolute(params p) : tau_(take_tau(p)) {
     if constexpr (Axis::fixed) n_ = Axis::unit();
     else n_ = detail::unit_axis(name.view(), "Revolute", p.n);
     if constexpr (std::is_arithmetic_v<Tau>) detail::require_finite(name.view(), "Revolute", "tau", tau_);
     if constexpr (has_spring_damper) law_ = detail::make_axis_law<Law>(name.view(), "Revolute", p, p.phi0);
-    if constexpr (has_friction) law_ = detail::make_axis_law<Law>(name.view(), "Revolute", p, 0.0);
+    else if constexpr (has_law) law_ = detail::make_axis_law<Law>(name.view(), "Revolute", p, 0.0);
   }
 
   [[nodiscard]] const Vec3d& n() const { return n_; }
