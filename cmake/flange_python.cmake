@@ -16,7 +16,8 @@
 # works. TIMING adds _time_derivative and _time_simulate, the C++ loops the
 # Python benchmark compares with.
 #
-#   flange_urdf_python_module(NAME <module> URDF <file> [FLOATING_BASE] [OUTPUT_DIRECTORY <dir>])
+#   flange_urdf_python_module(NAME <module> URDF <file> [FLOATING_BASE] [OUTPUT_DIRECTORY <dir>]
+#                             [STOP_STIFFNESS <k>] [STOP_DISSIPATION <d>] [NO_LIMITS])
 #
 # runs flange-urdf on the file and builds the module of its scene
 # (<module>::make_scene(), undriven).
@@ -130,7 +131,7 @@ ${timing_bind}}
 endfunction()
 
 function(flange_urdf_python_module)
-  cmake_parse_arguments(FU "FLOATING_BASE" "NAME;URDF;OUTPUT_DIRECTORY" "" ${ARGN})
+  cmake_parse_arguments(FU "FLOATING_BASE;NO_LIMITS" "NAME;URDF;OUTPUT_DIRECTORY;STOP_STIFFNESS;STOP_DISSIPATION" "" ${ARGN})
   if(NOT FU_NAME OR NOT FU_URDF)
     message(FATAL_ERROR "flange_urdf_python_module: NAME and URDF are needed")
   endif()
@@ -138,9 +139,16 @@ function(flange_urdf_python_module)
     message(FATAL_ERROR "flange_urdf_python_module: flange-urdf is not built (it needs libtinyxml2-dev)")
   endif()
   set(floating "")
-  if(FU_FLOATING_BASE)
-    set(floating FLOATING_BASE)
-  endif()
+  foreach(flag FLOATING_BASE NO_LIMITS)
+    if(FU_${flag})
+      list(APPEND floating ${flag})
+    endif()
+  endforeach()
+  foreach(value STOP_STIFFNESS STOP_DISSIPATION)
+    if(DEFINED FU_${value})
+      list(APPEND floating ${value} ${FU_${value}})
+    endif()
+  endforeach()
   set(out "")
   if(FU_OUTPUT_DIRECTORY)
     set(out OUTPUT_DIRECTORY "${FU_OUTPUT_DIRECTORY}")

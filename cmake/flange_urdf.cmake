@@ -1,4 +1,5 @@
-# flange_urdf_scene(<target> <robot.urdf> [NAMESPACE <ns>] [FLOATING_BASE])
+# flange_urdf_scene(<target> <robot.urdf> [NAMESPACE <ns>] [FLOATING_BASE]
+#                   [STOP_STIFFNESS <k>] [STOP_DISSIPATION <d>] [NO_LIMITS])
 #
 # Runs flange-urdf on the URDF file at build time (again whenever the file
 # changes) and makes the generated header, <ns>.hpp, includable by <target>:
@@ -8,12 +9,23 @@
 #
 # <ns> defaults to the file's name without its extension. FLOATING_BASE lets
 # the root link move freely where the URDF has no floating joint (flange-urdf
-# --floating-base).
+# --floating-base). Joint limits become compliant stops of stiffness <k>
+# (default 1e4) and dissipation <d> (default 1); NO_LIMITS leaves them out
+# (flange-urdf --stop-stiffness, --stop-dissipation, --no-limits).
 function(flange_urdf_scene target urdf)
-  cmake_parse_arguments(FU "FLOATING_BASE" "NAMESPACE" "" ${ARGN})
+  cmake_parse_arguments(FU "FLOATING_BASE;NO_LIMITS" "NAMESPACE;STOP_STIFFNESS;STOP_DISSIPATION" "" ${ARGN})
   set(extra "")
   if(FU_FLOATING_BASE)
-    set(extra --floating-base)
+    list(APPEND extra --floating-base)
+  endif()
+  if(FU_NO_LIMITS)
+    list(APPEND extra --no-limits)
+  endif()
+  if(DEFINED FU_STOP_STIFFNESS)
+    list(APPEND extra --stop-stiffness ${FU_STOP_STIFFNESS})
+  endif()
+  if(DEFINED FU_STOP_DISSIPATION)
+    list(APPEND extra --stop-dissipation ${FU_STOP_DISSIPATION})
   endif()
   get_filename_component(urdf_path "${urdf}" ABSOLUTE)
   if(NOT FU_NAMESPACE)

@@ -4,8 +4,10 @@
 // equals MuJoCo's to 1e-9 relative: with τ = 0 (gravity, Coriolis, damping)
 // and with random joint forces, and the mass matrices agree.
 //
-// MuJoCo runs with contacts, joint limits and every other constraint off,
-// since flange models no limits (flange-urdf reports them). Joints are
+// MuJoCo runs with contacts, joint limits and every other constraint off;
+// its limits are soft constraints, flange's compliant stops (flange-urdf
+// turns <limit> into them), so states are drawn inside the limits, where
+// neither acts (stops_test.cpp checks the stops against Simbody's). Joints are
 // matched by name; a free joint's quaternion is (w, x, y, z) in MuJoCo and
 // (x, y, z, w) in flange, and both take its linear velocity in the world
 // and ω in body axes.
@@ -97,6 +99,12 @@ void random_state(const mjModel* m, mjData* d, std::mt19937& rng) {
       for (int i = 0; i < 6; ++i) d->qvel[va + i] = 2 * u(rng);
     } else {
       d->qpos[qa] = m->jnt_type[j] == mjJNT_SLIDE ? 0.2 * u(rng) : 3.1 * u(rng);
+      // Inside a limited joint's range, where flange's stops (flange-urdf
+      // turns <limit> into them) push nothing, as MuJoCo's limits are off.
+      if (m->jnt_limited[j]) {
+        const double lo = m->jnt_range[2 * j], hi = m->jnt_range[2 * j + 1];
+        d->qpos[qa] = 0.5 * (lo + hi) + 0.49 * (hi - lo) * u(rng);
+      }
       d->qvel[va] = 2 * u(rng);
     }
   }

@@ -17,9 +17,14 @@
 //   into the parent through its origin; an axis along +x, +y or +z is a
 //   compile-time axis (2-D arithmetic), any other a run-time one;
 // - <dynamics damping> is axis_law::spring_damper with c = 0; with friction,
-//   axis_law::friction (regularised Coulomb); gravity is −9.81 m/s² along z.
+//   axis_law::friction (regularised Coulomb); gravity is −9.81 m/s² along z;
+// - a revolute or prismatic joint's <limit lower upper> (lower < upper) is a
+//   compliant stop at each bound, axis_law::limited<…> (joints/axis_law.hpp),
+//   with the stiffness and dissipation of generate_options; effort and
+//   velocity limits are not modelled.
 #pragma once
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <utility>
@@ -65,6 +70,26 @@ struct writer {
   std::vector<std::string> renamed;  ///< names with characters made '_'
   /// Each floating joint's component name and its <origin>: the pose home_state() sets.
   std::vector<std::pair<std::string, origin>> homes;
+  /// Joint limits as stops: on, and their stiffness and dissipation.
+  bool stops = true;
+  double stop_stiffness = 0, stop_dissipation = 0;
+
+  /// Whether joint j's position limits become stops.
+  bool has_stops(const joint& j) const {
+    return stops && j.has_limit && j.lower < j.upper &&
+           (j.kind == joint_kind::revolute || j.kind == joint_kind::prismatic);
+  }
+  /// The axis law with its stops, if any: "axis_law::limited<axis_law::friction>".
+  std::string law(const joint& j, const std::string& inner) const {
+    if (!has_stops(j)) return inner;
+    return "axis_law::limited<" + (inner == "axis_law::none" ? std::string() : inner) + ">";
+  }
+  /// The stops' initialiser, last in the joint's parameters: ".stop = {…}".
+  std::string stop_init(const joint& j) const {
+    if (!has_stops(j)) return "";
+    return ".stop = {.lower = " + num(j.lower) + ", .upper = " + num(j.upper) + ", .stiffness = " +
+           num(stop_stiffness) + ", .dissipation = " + num(stop_dissipation) + "}";
+  }
 
   /// A component name not yet used: `wanted` with every character flange's
   /// names cannot hold as is ('.', which separates a component from its frame,
@@ -141,25 +166,32 @@ struct writer {
       case joint_kind::revolute:
       case joint_kind::continuous: {
         const std::string tau = driven ? ", " + drive_type : "";
+        const std::string stop = stop_init(j), stop_more = stop.empty() ? "" : ", " + stop;
         if (j.friction > 0)
-          c = "Revolute<\"" + n + "\", " + axis + ", axis_law::friction" + tau + ">({" + n_param + drive_init +
-              ".d = " + num(j.damping) + ", .f_c = " + num(j.friction) + ", .v_s = 1e-3})";
+          c = "Revolute<\"" + n + "\", " + axis + ", " + law(j, "axis_law::friction") + tau + ">({" + n_param +
+              drive_init + ".d = " + num(j.damping) + ", .f_c = " + num(j.friction) + ", .v_s = 1e-3" + stop_more + "})";
         else if (j.damping > 0)
-          c = "Revolute<\"" + n + "\", " + axis + ", axis_law::spring_damper" + tau + ">({" + n_param + drive_init +
-              ".c = 0, .d = " + num(j.damping) + "})";
-        else if (driven)
-          c = "Revolute<\"" + n + "\", " + axis + ", axis_law::none" + tau + ">({" + n_param + drive_init + "})";
+          c = "Revolute<\"" + n + "\", " + axis + ", " + law(j, "axis_law::spring_damper") + tau + ">({" + n_param +
+              drive_init + ".c = 0, .d = " + num(j.damping) + stop_more + "})";
+        else if (driven || !stop.empty())
+          c = "Revolute<\"" + n + "\", " + axis + ", " + law(j, "axis_law::none") + tau + ">({" + n_param + drive_init +
+              stop + "})";
         else c = "Revolute<\"" + n + "\", " + axis + ">" + (typed.empty() ? "({.n = " + vec(j.axis) + "})" : "{}");
         break;
       }
       case joint_kind::prismatic: {
         const std::string force = driven ? drive_type : "double";
+        const std::string stop = stop_init(j), stop_more = stop.empty() ? "" : ", " + stop;
         if (j.friction > 0)
-          c = "Prismatic<\"" + n + "\", " + axis + ", " + force + ", axis_law::friction>({" + n_param + force_init +
-              ".d = " + num(j.damping) + ", .f_c = " + num(j.friction) + ", .v_s = 1e-3})";
+          c = "Prismatic<\"" + n + "\", " + axis + ", " + force + ", " + law(j, "axis_law::friction") + ">({" +
+              n_param + force_init + ".d = " + num(j.damping) + ", .f_c = " + num(j.friction) + ", .v_s = 1e-3" +
+              stop_more + "})";
         else if (j.damping > 0)
-          c = "Prismatic<\"" + n + "\", " + axis + ", " + force + ", axis_law::spring_damper>({" + n_param +
-              force_init + ".c = 0, .d = " + num(j.damping) + "})";
+          c = "Prismatic<\"" + n + "\", " + axis + ", " + force + ", " + law(j, "axis_law::spring_damper") + ">({" +
+              n_param + force_init + ".c = 0, .d = " + num(j.damping) + stop_more + "})";
+        else if (!stop.empty())
+          c = "Prismatic<\"" + n + "\", " + axis + ", " + force + ", " + law(j, "axis_law::none") + ">({" + n_param +
+              force_init + stop + "})";
         else c = "Prismatic<\"" + n + "\", " + axis + ", " + force + ">({" + n_param + force_init + "})";
         break;
       }
@@ -208,6 +240,11 @@ struct generate_options {
   /// The root link moves freely (a FreeMotion "floating_base" from the World)
   /// where the URDF welds it to the World (no floating joint at the root).
   bool floating_base = false;
+  /// Revolute and prismatic <limit lower upper> become compliant stops
+  /// (axis_law::limited) of this stiffness [N m/rad, N/m] and dissipation
+  /// [s/rad, s/m] (Simbody's MobilityLinearStop); off, limits are a note.
+  bool stops = true;
+  double stop_stiffness = 1e4, stop_dissipation = 1.0;
 };
 
 /// Writes the scene header for robot r (read from `file`) into out, in
@@ -218,6 +255,36 @@ inline std::vector<std::string> generate(const urdf_robot& r, const std::string&
   detail::writer w{r, file, false, {}, {}, {}, std::vector<std::string>(r.links.size()), {}, {}};
   detail::writer wd{r, file, true, {}, {}, {}, std::vector<std::string>(r.links.size()), {}, {}};
   w.link_frame[r.root] = wd.link_frame[r.root] = "world.frame_b";
+  if (!(o.stop_stiffness >= 0 && o.stop_dissipation >= 0 && std::isfinite(o.stop_stiffness) &&
+        std::isfinite(o.stop_dissipation)))
+    throw urdf_error("--stop-stiffness " + detail::num(o.stop_stiffness) + ", --stop-dissipation " +
+                     detail::num(o.stop_dissipation) + ": a stop's stiffness and dissipation are finite and not negative");
+  for (auto* x : {&w, &wd}) {
+    x->stops = o.stops;
+    x->stop_stiffness = o.stop_stiffness;
+    x->stop_dissipation = o.stop_dissipation;
+  }
+  {
+    // Limits: one note for all.
+    std::string limited;
+    int n_limited = 0, n_equal = 0;
+    for (const auto& j : r.joints)
+      if (j.has_limit && (j.kind == joint_kind::revolute || j.kind == joint_kind::prismatic)) {
+        if (j.lower < j.upper) limited += std::string(n_limited++ ? ", " : "") + "\"" + j.name + "\" (line " + std::to_string(j.line) + ")";
+        else ++n_equal;
+      }
+    if (n_limited > 0 && o.stops)
+      notes.push_back(file + ": " + std::to_string(n_limited) + " joint(s) have position limits, modelled as compliant "
+                      "stops (stiffness " + detail::num(o.stop_stiffness) + ", dissipation " +
+                      detail::num(o.stop_dissipation) + "; --stop-stiffness, --stop-dissipation; effort and velocity "
+                      "limits are not modelled): " + limited);
+    else if (n_limited > 0)
+      notes.push_back(file + ": " + std::to_string(n_limited) + " joint(s) have position, effort and velocity limits, "
+                      "not modelled (--no-limits): " + limited);
+    if (n_equal > 0)
+      notes.push_back(file + ": " + std::to_string(n_equal) + " joint(s) have <limit> with lower >= upper (URDF's "
+                      "default 0, 0): no stops");
+  }
   const std::string root = "\"" + r.links[r.root].name + "\"";
   const bool root_has_mass = r.links[r.root].has_inertial && r.links[r.root].in.mass > 0;
   if (o.floating_base) {

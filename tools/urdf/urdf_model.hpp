@@ -294,15 +294,8 @@ inline urdf_robot parse(const std::string& file, const std::string& xml) {
       throw urdf_error(file + ':' + std::to_string(r.joints[r.links[i].parent_joint].line) + ": <joint name=\"" +
                        r.joints[r.links[i].parent_joint].name + "\">: link \"" + r.links[i].name +
                        "\" is on a cycle of joints, not reached from the root \"" + r.links[r.root].name + "\"");
-  // Limits (one line for all), and friction (regularised in flange), are notes: never silent.
-  std::string limited;
-  int n_limited = 0;
-  for (const auto& j : r.joints)
-    if (j.has_limit && (j.kind == joint_kind::revolute || j.kind == joint_kind::prismatic))
-      limited += std::string(n_limited++ ? ", " : "") + "\"" + j.name + "\" (line " + std::to_string(j.line) + ")";
-  if (n_limited > 0)
-    r.notes.push_back(file + ": " + std::to_string(n_limited) + " joint(s) have position, effort and velocity "
-                      "limits, not modelled (flange has no joint-limit law): " + limited);
+  // Friction (regularised in flange) is a note: never silent. Limits are
+  // noted where they become stops (generate.hpp).
   for (const auto& j : r.joints) {
     if (j.friction > 0)
       r.notes.push_back(file + ':' + std::to_string(j.line) + ": <joint name=\"" + j.name +
