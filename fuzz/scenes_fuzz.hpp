@@ -118,6 +118,13 @@ models::tree_params<N> tree_numbers(bytes& b) {
     p.load[i] = b.vec(-2, 2);
   }
   p.g = Vec3d(b.num(-1, 1), b.num(-10, -9), b.num(-1, 1));
+  // Stops last, so that the corpus's bytes for the numbers above keep their meaning.
+  for (int i = 0; i < N; ++i) {
+    p.lower[i] = b.num(-1.2, -0.2);
+    p.upper[i] = b.num(0.2, 1.2);
+    p.k_stop[i] = b.num(10, 200);
+    p.d_stop[i] = b.num(0, 1);
+  }
   return p;
 }
 

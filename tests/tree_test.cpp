@@ -3,6 +3,8 @@
 // states and with the stack filled with NaN before every evaluation: the
 // derivative against the articulated-body algorithm, the residual on the
 // recovered variables, and the power balance (tree_laws.hpp).
+#include <algorithm>
+
 #include <catch2/catch.hpp>
 
 #include "tree_laws.hpp"
@@ -20,9 +22,9 @@ constexpr bool branches(const models::tree_shape& s) {
   return false;
 }
 
-template <unsigned Seed, int N, bool Planar>
+template <unsigned Seed, int N, bool Planar, bool Stops = false>
 void check_shape(test::law_errors& worst) {
-  constexpr auto shape = models::random_tree_shape(Seed, N, Planar);
+  constexpr auto shape = models::random_tree_shape(Seed, N, Planar, false, Stops);
   static_assert(branches(shape), "pick a seed whose tree branches");
   std::mt19937 rng(Seed);
   test::law_errors e;
@@ -30,6 +32,9 @@ void check_shape(test::law_errors& worst) {
     const auto s = models::tree<shape>(test::tree_params<N>(rng));
     static_assert(Planar == (detail::planar_axis<std::remove_cvref_t<decltype(s)>>() >= 0));
     test::check_laws(s, rng, e);
+  }
+  if constexpr (Stops) {
+    static_assert(std::count(shape.stops.begin(), shape.stops.end(), true) >= 2, "pick a seed with stops");
   }
   INFO("seed " << Seed << ", " << N << " joints: NE − ABA " << e.algorithms << ", residual " << e.residual
                << ", power balance " << e.power);
@@ -62,4 +67,14 @@ TEST_CASE("random planar trees: derivative = articulated-body, residual ≈ 0, p
   check_shape<6, 8, true>(worst);
   WARN("planar trees: largest NE − ABA " << worst.algorithms << ", residual " << worst.residual << ", power "
                                          << worst.power);
+}
+
+TEST_CASE("random trees with joint stops: derivative = articulated-body, residual ≈ 0, power balance") {
+  // axis_law::limited around every kind of law; random_state's coordinates
+  // (±1.5) press on the stops (bounds within ±1.2) most of the time.
+  test::law_errors worst;
+  check_shape<11, 7, false, true>(worst);
+  check_shape<12, 6, true, true>(worst);
+  WARN("trees with stops: largest NE − ABA " << worst.algorithms << ", residual " << worst.residual << ", power "
+                                             << worst.power);
 }

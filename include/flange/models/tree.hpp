@@ -68,6 +68,7 @@ struct tree_shape {
   std::array<joint_kind, max_joints> kind{};  ///< revolute: Revolute or Prismatic, as prismatic says
   std::array<int, max_joints> axis{};         ///< 0, 1, 2: axis::x, y, z as a type; 3: axis::any
   std::array<int, max_joints> law{};          ///< 0 none, 1 spring-damper, 2 friction
+  std::array<bool, max_joints> stops{};       ///< the law within axis_law::limited (Revolute, Prismatic)
   std::array<bool, max_joints> offset{};      ///< a FixedTranslation "o<i>" before the joint
   std::array<bool, max_joints> reversed{};    ///< frame_b faces the World
   std::array<int, max_joints> body{};         ///< 0 J at the frame, 1 cm offset, 2 diagonal J, 3 point mass
@@ -98,12 +99,14 @@ struct lcg {
 /// A random tree of n joints (see above); the same seed gives the same
 /// shape. With every_joint, the joints are drawn from every kind (a planar
 /// shape: Revolute, Prismatic and Planar in the plane).
-constexpr tree_shape random_tree_shape(unsigned seed, int n, bool planar, bool every_joint = false) {
+constexpr tree_shape random_tree_shape(unsigned seed, int n, bool planar, bool every_joint = false,
+                                       bool with_stops = false) {
   tree_shape t{};
   t.n = n;
   t.planar = planar;
   detail::lcg r{seed * 2654435761ULL + 12345};
   detail::lcg later{seed * 40503ULL + 977};  // joint kinds beyond the first seven (joint_kind)
+  detail::lcg stop{seed * 69069ULL + 4243};  // with_stops: which joints stop (a stream of its own)
   std::array<int, tree_shape::max_joints + 1> children{};  // [0]: the World
   for (int i = 0; i < n; ++i) {
     int p = -1;
@@ -139,6 +142,7 @@ constexpr tree_shape random_tree_shape(unsigned seed, int n, bool planar, bool e
         if (planar) t.axis[i] = 2;
       }
     }
+    t.stops[i] = with_stops && t.kind[i] == joint_kind::revolute && stop.below(2) == 0;
   }
   // A line force from joint i's child frame (behind its offset) to a frame
   // that is not below joint i: the path between its ends then crosses the
@@ -163,6 +167,7 @@ struct tree_params {
   std::array<Vec3d, N> r_cm;
   std::array<double, N> c, d, q0;  ///< axis laws: stiffness, damping (or viscous friction), rest position
   std::array<double, N> f_c;       ///< Coulomb friction
+  std::array<double, N> lower{}, upper{}, k_stop{}, d_stop{};  ///< stops: bounds, stiffness, dissipation
   std::array<double, N> f;         ///< a prismatic joint's force input
   std::array<Vec3d, N> torque;     ///< t<i>'s M_ext
   std::array<double, N> line_c, line_s0, line_d;
@@ -187,17 +192,22 @@ constexpr auto parent_frame() {
   if constexpr (Sh.parent[I] < 0) return fixed_string("world.frame_b");
   else return child_frame<Sh, Sh.parent[I]>();
 }
+template <int L>
+struct tree_law_of {
+  using type = std::conditional_t<L == 0, axis_law::none, std::conditional_t<L == 1, axis_law::spring_damper, axis_law::friction>>;
+};
 template <int A>
 using tree_axis = std::conditional_t<A == 0, axis::x, std::conditional_t<A == 1, axis::y, std::conditional_t<A == 2, axis::z, axis::any>>>;
-template <int L>
-using tree_law = std::conditional_t<L == 0, axis_law::none, std::conditional_t<L == 1, axis_law::spring_damper, axis_law::friction>>;
+template <int L, bool Stops = false>
+using tree_law = std::conditional_t<
+    Stops, axis_law::limited<typename tree_law_of<L>::type>, typename tree_law_of<L>::type>;
 template <int L>
 using tree_line_law = std::conditional_t<L == 0, line_law::spring, std::conditional_t<L == 1, line_law::damper, line_law::spring_damper>>;
 
 template <tree_shape Sh, int I, int N>
 auto tree_joint(const tree_params<N>& p) {
   using A = tree_axis<Sh.axis[I]>;
-  using Law = tree_law<Sh.law[I]>;
+  using Law = tree_law<Sh.law[I], Sh.stops[I]>;
   constexpr auto name = indexed_name<"j", I>();
   if constexpr (Sh.kind[I] == joint_kind::spherical) {
     return Spherical<name>{};
@@ -223,6 +233,7 @@ auto tree_joint(const tree_params<N>& p) {
       q.d = p.d[I];
       q.f_c = p.f_c[I];
     }
+    if constexpr (Sh.stops[I]) q.stop = {.lower = p.lower[I], .upper = p.upper[I], .stiffness = p.k_stop[I], .dissipation = p.d_stop[I]};
     return J(q);
   } else {
     using J = Revolute<name, A, Law>;
@@ -236,6 +247,7 @@ auto tree_joint(const tree_params<N>& p) {
       q.d = p.d[I];
       q.f_c = p.f_c[I];
     }
+    if constexpr (Sh.stops[I]) q.stop = {.lower = p.lower[I], .upper = p.upper[I], .stiffness = p.k_stop[I], .dissipation = p.d_stop[I]};
     return J(q);
   }
 }
