@@ -39,12 +39,19 @@ struct bulirsch_stoer;
 namespace detail {
 template <class T>
 concept complete_type = requires { sizeof(T); };
-/// The stepping adapter of a method for the scene S and the state X.
-template <class Method, class X, class S>
-auto method_stepping(const S& scene, double abs_tol, double rel_tol) {
+/// Refuses a method whose header is not included, in one error; true when
+/// the method can be used.
+template <class Method>
+constexpr bool method_available() {
   static_assert(complete_type<Method>,
                 "flange: this method is declared but its header is not included: "
                 "method::bulirsch_stoer needs #include <flange/simulate/bulirsch_stoer.hpp>");
+  return complete_type<Method>;
+}
+/// The stepping adapter of a method for the scene S and the state X (a
+/// complete method: method_available).
+template <class Method, class X, class S>
+auto method_stepping(const S& scene, double abs_tol, double rel_tol) {
   if constexpr (requires { Method::template stepping<X>(scene, abs_tol, rel_tol); }) {
     return Method::template stepping<X>(scene, abs_tol, rel_tol);
   } else {

@@ -91,10 +91,14 @@ struct checked_steps {
 template <class Method, class S, class State, class Watcher>
 long checked_run(const S& scene, State& x, double t0, double t1, const simulate_options& o, long& evals,
                  Watcher& watcher) {
-  auto st = method_stepping<Method, State>(scene, o.abs_tol(), o.rel_tol());
-  const checked_steps<S, decltype(st)> check{&scene, st};
-  counted_system<S> sys{&scene, &evals, o.max_rhs_evals};
-  return integrate(st, sys, scene, x, t0, t1, (t1 >= t0 ? 1 : -1) * o.dt, watcher, check);
+  if constexpr (method_available<Method>()) {  // else one error, and nothing instantiated after it
+    auto st = method_stepping<Method, State>(scene, o.abs_tol(), o.rel_tol());
+    const checked_steps<S, decltype(st)> check{&scene, st};
+    counted_system<S> sys{&scene, &evals, o.max_rhs_evals};
+    return integrate(st, sys, scene, x, t0, t1, (t1 >= t0 ? 1 : -1) * o.dt, watcher, check);
+  } else {
+    return 0L;
+  }
 }
 /// The integration loop's watcher that keeps the states at the requested
 /// times (already checked: at least two, strictly monotone, the first t0).
