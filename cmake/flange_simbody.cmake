@@ -17,3 +17,20 @@ macro(flange_simbody_program target source)
     set_target_properties(${target} PROPERTIES CXX_STANDARD 17 CXX_STANDARD_REQUIRED ON CXX_EXTENSIONS OFF)
   endif()
 endmacro()
+
+# flange_simbody_reference(<test> <program> <source> <define>): a Simbody
+# program that writes a reference trajectory for the test target <test>:
+# built, run at build time into <program>.txt, and the file's path given to
+# the test as the macro <define>. Without Simbody the test builds without it.
+function(flange_simbody_reference test program source define)
+  flange_simbody_program(${program} ${source})
+  if(FLANGE_SIMBODY_FOUND)
+    set(out ${CMAKE_CURRENT_BINARY_DIR}/${program}.txt)
+    add_custom_command(OUTPUT ${out} COMMAND ${program} ${out} DEPENDS ${program} COMMENT "Simbody: ${program}")
+    add_custom_target(${program}_reference DEPENDS ${out})
+    add_dependencies(${test} ${program}_reference)
+    target_compile_definitions(${test} PRIVATE ${define}="${out}")
+  else()
+    message(STATUS "flange: Simbody not found (tools/install-deps.sh --peers): ${test} runs without its Simbody cross-check")
+  endif()
+endfunction()

@@ -24,6 +24,7 @@
 #include "flange/forces/torque.hpp"
 #include "flange/forces/line_force.hpp"
 #include "flange/forces/world_force.hpp"
+#include "flange/forces/contact.hpp"
 #include "flange/scene/scene.hpp"
 #include "flange/equations/residual.hpp"
 #include "flange/equations/listing.hpp"

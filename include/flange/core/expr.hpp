@@ -11,6 +11,7 @@
 // never knows where its variables live; the context passed in does.
 #pragma once
 #include <ostream>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 
@@ -379,28 +380,31 @@ struct function_node : node {
   }
 };
 
-/// f(a, b) for a function object f of two scalars with a static `name`
-/// (a joint stop's piecewise force), printed name(a, b).
-template <class F, class A, class B>
+/// f(a…) for a function object f with a static `name`, of result shape S
+/// (a joint stop's piecewise force, a contact's wrench), printed name(a, …).
+/// Each argument reaches f as a value of the scalar type (vectors and
+/// matrices evaluated).
+template <shape S, class F, class... A>
 struct call_node : node {
-  static_assert(A::sh == shape::scalar && B::sh == shape::scalar, "flange: call() takes scalars");
-  static constexpr shape sh = shape::scalar;
+  static constexpr shape sh = S;
   static constexpr int prec = prec_atom;
   F f;
-  A a;
-  B b;
-  call_node(F fn, A x, B y) : f(std::move(fn)), a(std::move(x)), b(std::move(y)) {}
+  std::tuple<A...> args;
+  explicit call_node(F fn, A... a) : f(std::move(fn)), args(std::move(a)...) {}
   template <class C>
   auto eval(const C& c) const {
     using T = typename C::scalar;
-    return f(T(a.eval(c)), T(b.eval(c)));
+    return std::apply([&](const auto&... a) { return f(detail::cast<T>(a.eval(c))...); }, args);
   }
   template <class P>
   void print(std::ostream& os, const P& p) const {
     os << F::name << '(';
-    a.print(os, p);
-    os << ", ";
-    b.print(os, p);
+    std::apply(
+        [&](const auto&... a) {
+          int k = 0;
+          ((os << (k++ ? ", " : ""), a.print(os, p)), ...);
+        },
+        args);
     os << ')';
   }
 };
@@ -416,7 +420,7 @@ template <Expr A> auto tilde(A a) { return tilde_node<A>(std::move(a)); }
 template <Expr A> auto sin(A a) { return function_node<A, function::sin>(std::move(a)); }
 template <Expr A> auto cos(A a) { return function_node<A, function::cos>(std::move(a)); }
 template <Expr A> auto tanh(A a) { return function_node<A, function::tanh>(std::move(a)); }
-template <class F, Expr A, Expr B> auto call(F f, A a, B b) { return call_node<F, A, B>(std::move(f), std::move(a), std::move(b)); }
+template <shape S = shape::scalar, class F, Expr... A> auto call(F f, A... a) { return call_node<S, F, A...>(std::move(f), std::move(a)...); }
 
 // ---------------------------------------------------------------- equations
 
