@@ -187,3 +187,41 @@ TEST_CASE("contact parameters are checked at construction") {
   CHECK_THROWS_WITH(Ground({.a = {.radius = 0.1}, .material_a = m, .material_b = m, .transition_velocity = 0}),
                     Catch::Contains("transition_velocity = 0 must be positive"));
 }
+
+TEST_CASE("two spheres collide head-on: momentum kept, and without dissipation equal masses swap their velocities") {
+  // No gravity; ball a moves at 1 m/s toward ball b at rest, offset sideways
+  // by nothing (head-on) or by a little (glancing: momentum still kept).
+  auto balls = [](double c) {
+    const contact_material m{.stiffness = 1e7, .dissipation = c, .static_friction = 0.5, .dynamic_friction = 0.4};
+    const Mat3d J = Mat3d::Identity() * 0.004;
+    return scene(World<"world", gravity_kind::none>{}, FreeMotion<"fa">{}, Body<"a">({.m = 1.0, .J = J}),
+                 FreeMotion<"fb">{}, Body<"b">({.m = 1.0, .J = J}),
+                 Contact<"hit", contact_shape::sphere, contact_shape::sphere>(
+                     {.a = {.radius = 0.1}, .b = {.radius = 0.1}, .material_a = m, .material_b = m}),
+                 connect<"world.frame_b", "fa.frame_a">, connect<"fa.frame_b", "a.frame_a">,
+                 connect<"world.frame_b", "fb.frame_a">, connect<"fb.frame_b", "b.frame_a">,
+                 connect<"fa.frame_b", "hit.frame_a">, connect<"fb.frame_b", "hit.frame_b">);
+  };
+  for (double c : {0.0, 0.5}) {
+    for (double offset : {0.0, 0.05}) {
+      const auto s = balls(c);
+      using Y = decltype(s)::state_type;
+      Y x{};
+      x[0] = -0.3;  // a's centre
+      x[6] = 1;
+      x[8] = offset;  // b's centre: (0, offset, 0)
+      x[13] = 1;
+      x[14] = 1.0;  // a's velocity along x
+      const auto p0 = momentum(s, x);
+      x = simulate(s, x, 0.0, 0.6, {.tolerance = 1e-12});
+      const auto p1 = momentum(s, x);
+      INFO("c = " << c << ", offset " << offset << ": a's velocity " << x[14] << ", b's " << x[20]);
+      CHECK((p1.linear - p0.linear).norm() < 1e-10);
+      CHECK((p1.angular - p0.angular).norm() < 1e-10);
+      if (c == 0 && offset == 0) {  // an elastic head-on collision of equal masses
+        CHECK(std::abs(x[14]) < 1e-6);
+        CHECK(std::abs(x[20] - 1.0) < 1e-6);
+      }
+    }
+  }
+}
