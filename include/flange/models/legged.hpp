@@ -1,7 +1,9 @@
 // A floating-base robot: a trunk on a FreeMotion joint with Legs legs, each
 // of Links revolute joints (hip about y, then knee and ankle about x, ...),
 // each link a FixedTranslation to a body at its end. With the defaults, four
-// 3-joint legs: 7 + 12 coordinates, 6 + 12 rates. Gravity along −y.
+// 3-joint legs: 7 + 12 coordinates, 6 + 12 rates. Gravity along −y. With
+// Feet, each leg ends in a sphere that touches the ground, the half-space
+// y ≤ −ground_depth (a Contact "foot<K>" per leg, forces/contact.hpp).
 #pragma once
 #include <array>
 #include <utility>
@@ -14,6 +16,7 @@
 #include "flange/components/body.hpp"
 #include "flange/components/fixed_translation.hpp"
 #include "flange/components/world.hpp"
+#include "flange/forces/contact.hpp"
 #include "flange/joints/free_motion.hpp"
 #include "flange/joints/revolute.hpp"
 #include "flange/simulate/system.hpp"
@@ -27,6 +30,11 @@ struct legged_params {
   double link_length = 0.25;
   Vec3d link_inertia = Vec3d(0.004, 0.0005, 0.004);
   double hip_x = 0.3, hip_z = 0.15;  ///< hip positions on the trunk: (±hip_x, 0, ±hip_z)
+  // With feet:
+  double foot_radius = 0.03;
+  double ground_depth = 0.78;  ///< the ground is y ≤ −ground_depth (legs straight down touch it)
+  contact_material foot{.stiffness = 1e7, .dissipation = 0.5, .static_friction = 0.9, .dynamic_friction = 0.7};
+  contact_material ground{.stiffness = 1e7, .dissipation = 0.5, .static_friction = 0.9, .dynamic_friction = 0.7};
 };
 
 namespace detail {
@@ -50,7 +58,20 @@ auto leg_link(const legged_params& p) {
                           connect<j + ".frame_b", b + ".frame_a">);
 }
 
+/// Leg K's foot: a sphere at its last link's end against the ground.
 template <int K, int Links>
+auto foot(const legged_params& p) {
+  namespace hana = boost::hana;
+  constexpr auto f = indexed_name<"foot", K>();
+  return hana::make_tuple(
+      Contact<f, contact_shape::sphere, contact_shape::half_space>(
+          {.a = {.radius = p.foot_radius}, .b = {.n = Vec3d::UnitY(), .offset = -p.ground_depth},
+           .material_a = p.foot, .material_b = p.ground}),
+      connect<indexed_name<"r", 100 * K + Links - 1>() + ".frame_b", f + ".frame_a">,
+      connect<"world.frame_b", f + ".frame_b">);
+}
+
+template <int K, int Links, bool Feet>
 auto leg(const legged_params& p) {
   namespace hana = boost::hana;
   constexpr auto h = indexed_name<"h", K>();
@@ -59,12 +80,13 @@ auto leg(const legged_params& p) {
   auto links = [&]<int... J>(std::integer_sequence<int, J...>) {
     return hana::flatten(hana::make_tuple(leg_link<K, J, Links>(p)...));
   }(std::make_integer_sequence<int, Links>{});
-  return hana::concat(hip, links);
+  if constexpr (Feet) return hana::concat(hana::concat(hip, links), foot<K, Links>(p));
+  else return hana::concat(hip, links);
 }
 }  // namespace detail
 
 /// The floating-base robot (see above).
-template <int Legs = 4, int Links = 3>
+template <int Legs = 4, int Links = 3, bool Feet = false>
 auto legged(const legged_params& p = {}) {
   namespace hana = boost::hana;
   static_assert(Legs >= 1 && Legs <= 9 && Links >= 1 && Links <= 99);
@@ -72,7 +94,7 @@ auto legged(const legged_params& p = {}) {
                                Body<"trunk">({.m = p.trunk_mass, .J = p.trunk_inertia.asDiagonal()}),
                                connect<"world.frame_b", "base.frame_a">, connect<"base.frame_b", "trunk.frame_a">);
   auto legs = [&]<int... K>(std::integer_sequence<int, K...>) {
-    return hana::flatten(hana::make_tuple(detail::leg<K, Links>(p)...));
+    return hana::flatten(hana::make_tuple(detail::leg<K, Links, Feet>(p)...));
   }(std::make_integer_sequence<int, Legs>{});
   return hana::unpack(hana::concat(base, legs), [](auto... a) { return scene(std::move(a)...); });
 }
