@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 #include <flange/dynamics/articulated_body.hpp>
 #include <flange/ensemble/ensemble.hpp>
+#include <flange/forces/contact.hpp>
 #include <flange/forces/line_force.hpp>
 #include <flange/forces/world_force.hpp>
 #include <flange/simulate/checked.hpp>
@@ -103,6 +104,22 @@ TEST_CASE("a loop scene's derivative and its projected stepping allocate nothing
           for (int i = 0; i < 100; ++i) fb(x, dx, 0.0);
           integrate_projected(dopri, fb, x, 0.01, 0.5, 1e-3);
           normalize(fb, x);
+        }) == 0);
+}
+
+TEST_CASE("a ball bouncing on the ground (a Contact) allocates nothing, in its derivative and through simulate") {
+  const contact_material m{.stiffness = 1e7, .dissipation = 0.5, .static_friction = 0.8, .dynamic_friction = 0.6};
+  const auto ball = scene(World<"world">{}, FreeMotion<"fly">{}, Body<"b">({.m = 1, .J = Mat3d::Identity() * 0.004}),
+                          Contact<"ground", contact_shape::sphere, contact_shape::half_space>(
+                              {.a = {.radius = 0.1}, .b = {.n = {0, 1, 0}}, .material_a = m, .material_b = m}),
+                          connect<"world.frame_b", "fly.frame_a">, connect<"fly.frame_b", "b.frame_a">,
+                          connect<"fly.frame_b", "ground.frame_a">, connect<"world.frame_b", "ground.frame_b">);
+  decltype(ball)::state_type x{0, 0.099, 0, 0, 0, 0, 1, 0.5, -0.1, 0.2, 1.0, 2.0, -3.0}, dx;
+  CHECK(count_allocations([&] {
+          for (int i = 0; i < 100; ++i) ball(x, dx, 0.0);
+          const auto y = simulate(ball, x, 0.0, 0.5);
+          volatile double sink = y[1] + dx[1];
+          (void)sink;
         }) == 0);
 }
 
