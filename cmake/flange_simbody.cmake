@@ -18,8 +18,9 @@ macro(flange_simbody_program target source)
   endif()
 endmacro()
 
-# flange_simbody_reference(<test> <program> <source> <define>): a Simbody
-# program that writes a reference trajectory for the test target <test>:
+# flange_simbody_reference(<test> <program> <source> <define> [<more tests>…]):
+# a Simbody program that writes a reference trajectory for the test target
+# <test> (and any further test targets listed after <define>):
 # built, run at build time into <program>.txt, and the file's path given to
 # the test as the macro <define>. Without Simbody the test builds without it.
 function(flange_simbody_reference test program source define)
@@ -28,8 +29,10 @@ function(flange_simbody_reference test program source define)
     set(out ${CMAKE_CURRENT_BINARY_DIR}/${program}.txt)
     add_custom_command(OUTPUT ${out} COMMAND ${program} ${out} DEPENDS ${program} COMMENT "Simbody: ${program}")
     add_custom_target(${program}_reference DEPENDS ${out})
-    add_dependencies(${test} ${program}_reference)
-    target_compile_definitions(${test} PRIVATE ${define}="${out}")
+    foreach(t ${test} ${ARGN})
+      add_dependencies(${t} ${program}_reference)
+      target_compile_definitions(${t} PRIVATE ${define}="${out}")
+    endforeach()
   else()
     message(STATUS "flange: Simbody not found (tools/install-deps.sh --peers): ${test} runs without its Simbody cross-check")
   endif()

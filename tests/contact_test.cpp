@@ -53,11 +53,11 @@ X start(const Vec3d& r, const Vec3d& v, const Vec3d& w = Vec3d::Zero()) {
 
 #ifdef FLANGE_SIMBODY_CONTACT
 TEST_CASE("a ball thrown onto the ground follows Simbody's HuntCrossleyForce") {
-  // contact_reference.cpp wrote Simbody's trajectory, in flange's state layout.
+  // contact_reference.cpp wrote Simbody's trajectories (the ball's first), in flange's state layout.
   std::ifstream in(FLANGE_SIMBODY_CONTACT);
   REQUIRE(in);
   std::vector<std::array<double, 14>> rows;
-  for (std::array<double, 14> r; in >> r[0];) {
+  for (std::array<double, 14> r; rows.size() < cs::samples + 1 && in >> r[0];) {  // the ball's block
     for (int i = 1; i < 14; ++i) in >> r[i];
     rows.push_back(r);
   }
@@ -139,15 +139,17 @@ TEST_CASE("with dissipation the restitution is Hunt and Crossley's 1 − c·v fo
 }
 
 TEST_CASE("a ball on an incline rolls at (5/7)·g·sin θ when friction holds, and slides at g·(sin θ − μ·cos θ) when it cannot") {
-  auto accel = [](double theta, double mu) {
+  const double theta = 20 * std::numbers::pi / 180;
+  // The static penetration under the ball's weight across the slope (same
+  // material on both sides: k = E^(2/3)/2, f = (4/3)·k·δ·√(R·k·δ)).
+  const double k = std::cbrt(cs::stiffness * cs::stiffness) / 2;
+  const double depth =
+      std::pow(3 * cs::m * cs::g * std::cos(theta) / (4 * k * std::sqrt(cs::radius * k)), 2.0 / 3.0);
+  auto accel = [&](double mu) {
     const Vec3d n(-std::sin(theta), std::cos(theta), 0);  // the incline's outward normal; downhill is −x
     const auto s = ball(material(0.5, mu, mu, 0), n, 1e-4);
     // At rest on the incline, at the static penetration; measured over 0.5 s
     // after 0.2 s of settling.
-    const double depth = std::pow(cs::m * cs::g * std::cos(theta) /
-                                      (4.0 / 3.0 * std::sqrt(cs::radius) * std::pow(cs::stiffness, 1.0) /
-                                       std::pow(2.0, 1.5)),
-                                  2.0 / 3.0);
     X x = start((cs::radius - depth) * n, Vec3d::Zero());
     const Vec3d down(-std::cos(theta), -std::sin(theta), 0);
     auto speed = [&](const X& y) { return down.dot(Vec3d(y[7], y[8], y[9])); };
@@ -156,24 +158,30 @@ TEST_CASE("a ball on an incline rolls at (5/7)·g·sin θ when friction holds, a
     x = simulate(s, x, 0.2, 0.7, {.tolerance = 1e-10});
     return (speed(x) - v1) / 0.5;
   };
-  const double theta = 20 * std::numbers::pi / 180;
-  const double roll = accel(theta, 0.8), slide = accel(theta, 0.05);
+  const double roll = accel(0.8), slide = accel(0.05);
   const double g_sin = cs::g * std::sin(theta);
-  INFO("rolling " << roll << " against " << 5.0 / 7 * g_sin << "; sliding " << slide << " against "
-                  << cs::g * (std::sin(theta) - 0.05 * std::cos(theta)));
-  // Rolling: tan θ = 0.36 < (7/2)·0.8. The regularised friction lets it creep
-  // at about v_t·(the friction it needs)/(μ·f_n): a ∝ that creep's change, small.
+  // Rolling: tan θ = 0.36 < (7/2)·0.8. It rolls on the contact point, in
+  // the middle of the overlap: on the radius r = R − δ/2, so that
+  // a = g·sin θ/(1 + J/(m·r²)), (5/7)·g·sin θ for a rigid ball (J = (2/5)·m·R²).
+  // The regularised friction lets it creep at a steady v_t·(the friction
+  // it needs)/(μ·f_n), which does not change a.
+  const double r = cs::radius - depth / 2;
+  const double rolling = g_sin / (1 + cs::J[2] / (cs::m * r * r));
+  const double sliding = cs::g * (std::sin(theta) - 0.05 * std::cos(theta));
+  INFO("rolling " << roll << " against " << rolling << " ((5/7)·g·sin θ = " << 5.0 / 7 * g_sin << "); sliding "
+                  << slide << " against " << sliding);
+  CHECK(std::abs(roll - rolling) < 1e-8 * g_sin);
   CHECK(std::abs(roll - 5.0 / 7 * g_sin) < 1e-3 * g_sin);
   // Sliding: tan θ = 0.36 > (7/2)·0.05, slipping far above v_t, so f_t = μ·f_n.
-  CHECK(std::abs(slide - cs::g * (std::sin(theta) - 0.05 * std::cos(theta))) < 1e-3 * g_sin);
+  CHECK(std::abs(slide - sliding) < 1e-8 * g_sin);
 }
 
 TEST_CASE("contact parameters are checked at construction") {
   const auto m = material();
   CHECK_THROWS_WITH(Ground({.a = {.radius = -0.5}, .material_a = m, .material_b = m}),
-                    Catch::Contains("Contact \"ball_ground\": sphere a.radius = -0.5 is negative"));
+                    Catch::Contains("Contact \"ball_ground\": a.radius = -0.5 must be positive"));
   CHECK_THROWS_WITH(Ground({.a = {.radius = 0.1}, .b = {.n = {0, 2, 0}}, .material_a = m, .material_b = m}),
-                    Catch::Contains("Contact \"ball_ground\": the half-space's normal b.n = [0 2 0] is not a unit vector"));
+                    Catch::Contains("Contact \"ball_ground\": b.n = [0 2 0] is not a unit vector (norm 2)"));
   CHECK_THROWS_WITH(Ground({.a = {.radius = 0.1}, .b = {.n = {0, 0, 0}}, .material_a = m, .material_b = m}),
                     Catch::Contains("is not a unit vector"));
   auto bad = m;

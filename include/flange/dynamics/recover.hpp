@@ -18,6 +18,8 @@
 #include "flange/detail/inline.hpp"
 #include <array>
 #include <string_view>
+#include <tuple>
+#include <utility>
 
 #include "flange/core/frame_kinematics.hpp"
 #include "flange/dynamics/algorithm.hpp"
@@ -339,8 +341,11 @@ template <class S, class T = double, class State>
       c.write_internals(q.data(), v.data(), set);
     }
     if constexpr (requires { c.internal_values(t, js, &sol.frames[0]); }) {
+      // (value, rate) pairs: an array, or a tuple where the kinds differ.
       const auto iv = c.internal_values(t, js, &sol.frames[tab.frame_base[I]]);
-      for (int k = 0; k < int(iv.size()); ++k) set(k, iv[k].first, iv[k].second);
+      [&]<std::size_t... K>(std::index_sequence<K...>) FLANGE_INLINE_LAMBDA {
+        (set(int(K), std::get<K>(iv).first, std::get<K>(iv).second), ...);
+      }(std::make_index_sequence<std::tuple_size_v<std::remove_cvref_t<decltype(iv)>>>{});
     }
     if constexpr (carries_body<C>) {
       const auto& k = sol.frames[tab.frame_base[I]];

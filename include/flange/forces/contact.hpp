@@ -7,56 +7,49 @@
 //        .material_a = {.stiffness = 1e7, .dissipation = 0.5, .static_friction = 0.9, .dynamic_friction = 0.7},
 //        .material_b = {.stiffness = 1e7, .dissipation = 0.5, .static_friction = 0.9, .dynamic_friction = 0.7}})
 //
-// Shape a sits at frame_a (a sphere centred on its origin), shape b at frame_b
-// (a sphere, or a half-space {p : n·p ≤ offset} in frame_b's coordinates, n
-// its outward unit normal; a half-space on the World is a ground or a wall).
-// Pairs: sphere–half-space, sphere–sphere. Which shapes can touch is written
-// in the scene, one Contact per pair; shapes that no Contact pairs pass
-// through each other.
+// Shape a sits at frame_a, shape b at frame_b (contact_geometry.hpp: the
+// shapes, the pairs, and where a pair overlaps: at one point, or at a
+// capsule's two ends, or a box's eight corners). Which shapes can touch is
+// written in the scene, one Contact per pair; shapes that no Contact pairs
+// pass through each other.
 //
-// With δ the penetration (the overlap of the shapes along N, the normal from
-// b toward a), δ̇ its rate, R the effective radius (a sphere's radius against
-// a half-space, r_a·r_b/(r_a + r_b) between spheres), and the materials
-// combined as Simbody combines them (k_i = E_i^(2/3), s = k_a/(k_a + k_b),
-// k = k_b·s, c = c_b·s + c_a·(1 − s), μ = 2·μ_a·μ_b/(μ_a + μ_b)):
+// At each point of a pair, with δ the penetration (the overlap of the shapes
+// along N, the normal from b toward a), δ̇ its rate, R the effective radius
+// (a sphere's radius against a half-space or a box, r_a·r_b/(r_a + r_b)
+// between spheres), and the materials combined as Simbody combines them
+// (k_i = E_i^(2/3), s = k_a/(k_a + k_b), k = k_b·s, c = c_b·s + c_a·(1 − s),
+// μ = 2·μ_a·μ_b/(μ_a + μ_b)):
 //
 //   f_H = (4/3)·k·δ·√(R·k·δ)           Hertz (= (4/3)·E·√R·δ^(3/2), E = k^(3/2))
 //   f_n = max(0, f_H·(1 + (3/2)·c·δ̇))  Hunt–Crossley: pushes, never pulls
 //   f_t = f_n·(min(v_s/v_t, 1)·(μ_d + 2·(μ_s − μ_d)/(1 + (v_s/v_t)²)) + μ_v·v_s)
 //
-// f_t opposes the slip velocity v_s of a on b at the contact point, which
+// f_t opposes the slip velocity v_s of a on b at the contact point p, which
 // lies at the middle of the overlap, moved by δ·(1/2 − s) along N (toward
 // the softer surface). The stored energy is (2/5)·f_H·δ. Unlike Simbody, the
 // friction is f_n's (never pushing when the normal force would pull).
 //
 // f_n grows like δ^(3/2) from first touch, so the force is C¹ in the state;
 // the friction's slope jumps at v_s = v_t. A scene without a Contact has none
-// of this arithmetic. The element's internal variables are δ, f_n, f_t and
-// v_s (recover(…)["foot_ground.δ"], …).
+// of this arithmetic. The element's internal variables are, per point, δ,
+// f_n, f_t, v_s and p (recover(…)["foot_ground.δ"], …; a pair of several
+// points numbers them: "δ[0]", "f_n[0]", … "p[7]").
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <string_view>
+#include <tuple>
+#include <utility>
 #include <type_traits>
 
+#include <boost/hana/flatten.hpp>
 #include <boost/hana/tuple.hpp>
 
 #include "flange/core/component.hpp"
 #include "flange/core/frame_kinematics.hpp"
+#include "flange/forces/contact_geometry.hpp"
 
 namespace flange {
-
-/// The shapes a Contact pairs.
-namespace contact_shape {
-/// A sphere centred on its frame's origin; radius 0 is a point.
-struct sphere {
-  double radius = 0;  ///< [m]
-};
-/// The half-space {p : n·p ≤ offset}, p in its frame's coordinates.
-struct half_space {
-  Vec3d n = Vec3d::UnitZ();  ///< outward unit normal
-  double offset = 0;         ///< [m]
-};
-}  // namespace contact_shape
 
 /// A contact surface's material (Simbody's HuntCrossleyForce::setBodyParameters).
 struct contact_material {
@@ -71,41 +64,64 @@ namespace diagnostic {
 template <class A, class B>
 struct contact_pair_not_supported {
   static_assert(always_false<A>,
-                "flange: Contact pairs a sphere (frame_a) with a half-space or a sphere (frame_b); this pair of "
-                "shapes (the template arguments) is not supported");
+                "flange: Contact pairs sphere-half_space, sphere-sphere, sphere-box, capsule-half_space and "
+                "box-half_space (shape a at frame_a, shape b at frame_b); this pair of shapes (the template "
+                "arguments) is not supported: swap frame_a and frame_b if the other order is listed "
+                "(box-box, cylinders and meshes are not there yet, docs/contact.md)");
 };
 }  // namespace diagnostic
 
 namespace detail {
-/// A contact's numbers at one instant (world coordinates).
+/// A contact's numbers at one point at one instant (world coordinates).
 template <class T>
 struct contact_point {
   T depth{0}, depth_rate{0}, fn{0}, ft{0}, vs{0}, hertz{0};
-  Vec3<T> point = Vec3<T>::Zero();  ///< where the force acts
+  Vec3<T> point = Vec3<T>::Zero();  ///< where the force acts (apart: the point of b's surface nearest a)
   Vec3<T> force = Vec3<T>::Zero();  ///< on frame_a's side; frame_b's side takes −force
 };
+
+/// The names of a contact's internals: per point δ, f_n, f_t, v_s, p; with
+/// several points numbered "δ[0]" …
+inline constexpr std::string_view contact_internal_names[5][9] = {
+    {"δ", "δ[0]", "δ[1]", "δ[2]", "δ[3]", "δ[4]", "δ[5]", "δ[6]", "δ[7]"},
+    {"f_n", "f_n[0]", "f_n[1]", "f_n[2]", "f_n[3]", "f_n[4]", "f_n[5]", "f_n[6]", "f_n[7]"},
+    {"f_t", "f_t[0]", "f_t[1]", "f_t[2]", "f_t[3]", "f_t[4]", "f_t[5]", "f_t[6]", "f_t[7]"},
+    {"v_s", "v_s[0]", "v_s[1]", "v_s[2]", "v_s[3]", "v_s[4]", "v_s[5]", "v_s[6]", "v_s[7]"},
+    {"p", "p[0]", "p[1]", "p[2]", "p[3]", "p[4]", "p[5]", "p[6]", "p[7]"}};
+inline constexpr std::string_view contact_quantity_names[5] = {"contact_depth", "contact_f_n", "contact_f_t",
+                                                               "contact_v_s", "contact_point"};
+inline constexpr std::string_view contact_flow_names[4] = {"contact_F_a", "contact_M_a", "contact_F_b",
+                                                           "contact_M_b"};
 }  // namespace detail
 
 template <fixed_string Name, class ShapeA, class ShapeB>
 class Contact {
-  static constexpr bool against_half_space =
-      std::is_same_v<ShapeA, contact_shape::sphere> && std::is_same_v<ShapeB, contact_shape::half_space>;
-  static constexpr bool between_spheres =
-      std::is_same_v<ShapeA, contact_shape::sphere> && std::is_same_v<ShapeB, contact_shape::sphere>;
+  static constexpr bool supported = detail::contact_pair<ShapeA, ShapeB>::supported;
+  /// An unsupported pair is one diagnostic; the rest compiles as a sphere on a half-space.
+  using pair_type = std::conditional_t<supported, detail::contact_pair<ShapeA, ShapeB>,
+                                       detail::contact_pair<contact_shape::sphere, contact_shape::half_space>>;
+  static constexpr int M = pair_type::points;
+  static constexpr int per_point = 5;
 
  public:
   static constexpr auto name = Name;
   static constexpr std::string_view type_name = "Contact";
   static constexpr role kind = role::force;
   static constexpr std::array<std::string_view, 2> frames{"frame_a", "frame_b"};
-  static constexpr std::array<internal_decl, 4> internals{{{"δ", expr::var_kind::scalar},
-                                                           {"f_n", expr::var_kind::scalar},
-                                                           {"f_t", expr::var_kind::scalar},
-                                                           {"v_s", expr::var_kind::scalar}}};
+  /// The points where the pair can touch: 1, a capsule's 2 ends, or a box's 8 corners.
+  static constexpr int points = M;
+  static constexpr auto internals = [] {
+    std::array<internal_decl, per_point * M> d{};
+    for (int i = 0; i < M; ++i)
+      for (int j = 0; j < per_point; ++j)
+        d[per_point * i + j] = {detail::contact_internal_names[j][M == 1 ? 0 : i + 1],
+                                j == 4 ? expr::var_kind::vec : expr::var_kind::scalar};
+    return d;
+  }();
   /// Needs the frames' positions and velocities (a position pass in the dynamics).
   static constexpr bool needs_motion = true;
   static constexpr bool line_of_action = false;
-  /// A force at the contact point: a force and a torque about each frame's origin.
+  /// A force at each contact point: a force and a torque about each frame's origin.
   static constexpr bool exerts_force = true, exerts_torque = true;
 
   struct params {
@@ -116,21 +132,11 @@ class Contact {
     double transition_velocity = 1e-3;    ///< v_t [m/s]: static friction peaks at this slip speed
   };
 
-  explicit Contact(params p) : shape_a_(p.a), shape_b_(p.b) {
-    if constexpr (against_half_space || between_spheres) {
-      check_sphere("a", shape_a_);
-      if constexpr (between_spheres) {
-        check_sphere("b", shape_b_);
-        reff_ = shape_a_.radius * shape_b_.radius / (shape_a_.radius + shape_b_.radius);
-      } else {
-        detail::require_finite(name.view(), type_name, "b.offset", shape_b_.offset);
-        detail::require_finite(name.view(), type_name, "b.n", shape_b_.n);
-        if (!(std::abs(shape_b_.n.norm() - 1) <= 1e-9))
-          throw parameter_error(detail::concat(type_name, " \"", name.view(), "\": the half-space's normal b.n = [",
-                                               shape_b_.n.transpose(), "] is not a unit vector (norm ",
-                                               shape_b_.n.norm(), ")"));
-        reff_ = shape_a_.radius;
-      }
+  explicit Contact(params p) {
+    if constexpr (supported) {
+      geometry_ = {p.a, p.b};
+      detail::check_pair(name.view(), geometry_);
+      for (int i = 0; i < M; ++i) reff_[i] = geometry_.radius(i);
     } else {
       (void)sizeof(diagnostic::contact_pair_not_supported<ShapeA, ShapeB>);
     }
@@ -153,42 +159,32 @@ class Contact {
     inv_vt_ = 1 / p.transition_velocity;
   }
 
-  /// The contact at the two frames' motion (frame_kinematics: R turns world
-  /// into the frame, w in frame coordinates).
+  /// The pair's shapes, as given.
+  [[nodiscard]] const pair_type& geometry() const { return geometry_; }
+
+  /// The contact at point i for the two frames' motion (frame_kinematics: R
+  /// turns world into the frame, w in frame coordinates).
   template <class T>
-  [[nodiscard]] detail::contact_point<T> evaluate(const frame_kinematics<T>& a, const frame_kinematics<T>& b) const {
+  [[nodiscard]] detail::contact_point<T> evaluate(int i, const frame_kinematics<T>& a,
+                                                  const frame_kinematics<T>& b) const {
     using std::sqrt;
     detail::contact_point<T> cp;
-    // N, from b toward a, and the distance from b's surface to a's centre along N.
-    Vec3<T> N;
-    T gap;
-    Vec3<T> surface;  // the point of b's surface under a's centre
-    if constexpr (between_spheres) {
-      const Vec3<T> d = a.r - b.r;
-      const T dist = sqrt(d.squaredNorm());
-      if (!(dist > T(0))) return cp;  // concentric: no direction (Simbody likewise applies nothing)
-      N = d / dist;
-      gap = dist - T(shape_b_.radius);
-      surface = b.r + T(shape_b_.radius) * N;
-    } else {
-      N = b.R.transpose() * shape_b_.n.template cast<T>();
-      gap = N.dot(a.r - b.r) - T(shape_b_.offset);
-      surface = a.r - gap * N;
-    }
-    cp.depth = T(shape_a_.radius) - gap;
-    if (!(cp.depth > T(0))) {
-      cp.depth = T(0);
+    const auto o = geometry_.overlap(i, a, b);
+    const Vec3<T>& N = o.N;
+    if (!(o.depth > T(0))) {
+      cp.point = o.surface;
       return cp;
     }
+    cp.depth = o.depth;
     // The middle of the overlap, moved toward the softer side.
-    cp.point = surface - (T(0.5) * cp.depth) * N + (cp.depth * T(0.5 - s_)) * N;
+    cp.point = o.surface - (T(s_) * cp.depth) * N;
     // The velocity of b relative to a at that point: δ̇ along N, the slip across it.
     const Vec3<T> va = a.v + (a.R.transpose() * a.w).cross(cp.point - a.r);
     const Vec3<T> vb = b.v + (b.R.transpose() * b.w).cross(cp.point - b.r);
     const Vec3<T> v = vb - va;
     cp.depth_rate = v.dot(N);
     const Vec3<T> vt = v - cp.depth_rate * N;
-    cp.hertz = T(4.0 / 3.0 * k_) * cp.depth * sqrt(T(reff_ * k_) * cp.depth);
+    cp.hertz = T(4.0 / 3.0 * k_) * cp.depth * sqrt(T(reff_[i] * k_) * cp.depth);
     const T f = cp.hertz * (T(1) + T(1.5 * c_) * cp.depth_rate);
     cp.fn = f > T(0) ? f : T(0);
     cp.force = cp.fn * N;
@@ -207,31 +203,40 @@ class Contact {
   /// force and torque (about the frame's origin), world coordinates.
   template <class T>
   void wrenches(const T&, const state_of<T> auto&, const frame_kinematics<T>* k, wrench<T>* on) const {
-    const auto cp = evaluate(k[0], k[1]);
-    on[0] = {cp.force, (cp.point - k[0].r).cross(cp.force)};
-    on[1] = {-cp.force, (cp.point - k[1].r).cross(-cp.force)};
+    Vec3<T> F = Vec3<T>::Zero(), Ma = Vec3<T>::Zero();
+    for (int i = 0; i < M; ++i) {
+      const auto cp = evaluate(i, k[0], k[1]);
+      if (!(cp.depth > T(0))) continue;
+      F += cp.force;
+      Ma += (cp.point - k[0].r).cross(cp.force);
+    }
+    on[0] = {F, Ma};
+    on[1] = {Vec3<T>(-F), Vec3<T>(-(Ma + (k[0].r - k[1].r).cross(F)))};
   }
 
-  /// δ, f_n, f_t, v_s and their rates (δ̇; the forces' rates appear in no equation).
+  /// Per point δ, f_n, f_t, v_s, p and their rates (δ̇; the others' rates
+  /// appear in no equation).
   template <class T>
-  [[nodiscard]] std::array<std::pair<T, T>, 4> internal_values(const T&, const state_of<T> auto&,
-                                                               const frame_kinematics<T>* k) const {
-    const auto cp = evaluate(k[0], k[1]);
-    return {std::pair{cp.depth, cp.depth_rate}, std::pair{cp.fn, T(0)}, std::pair{cp.ft, T(0)},
-            std::pair{cp.vs, T(0)}};
+  [[nodiscard]] auto internal_values(const T&, const state_of<T> auto&, const frame_kinematics<T>* k) const {
+    return [&]<std::size_t... I>(std::index_sequence<I...>) {
+      return std::tuple_cat([&](int i) {
+        const auto cp = evaluate(i, k[0], k[1]);
+        return std::tuple{std::pair{cp.depth, cp.depth_rate}, std::pair{cp.fn, T(0)}, std::pair{cp.ft, T(0)},
+                          std::pair{cp.vs, T(0)}, std::pair{cp.point, Vec3<T>(Vec3<T>::Zero())}};
+      }(int(I))...);
+    }(std::make_index_sequence<M>{});
   }
 
-  /// The stored elastic energy (2/5)·f_H·δ, for recover()'s energy.
+  /// The stored elastic energy Σ (2/5)·f_H·δ, for recover()'s energy.
   template <class T>
   [[nodiscard]] T potential_energy(const T&, const state_of<T> auto&, const frame_kinematics<T>* k) const {
-    const auto cp = evaluate(k[0], k[1]);
-    return T(0.4) * cp.hertz * cp.depth;
+    T e(0);
+    for (int i = 0; i < M; ++i) {
+      const auto cp = evaluate(i, k[0], k[1]);
+      e += T(0.4) * cp.hertz * cp.depth;
+    }
+    return e;
   }
-
-  static constexpr auto depth = internal_<2, 0, expr::var_kind::scalar>;
-  static constexpr auto f_n = internal_<2, 1, expr::var_kind::scalar>;
-  static constexpr auto f_t = internal_<2, 2, expr::var_kind::scalar>;
-  static constexpr auto v_s = internal_<2, 3, expr::var_kind::scalar>;
 
   /// The residual: each quantity of the contact as a function of the two
   /// frames' poses and rates (printed contact_F_a(r_a, R_a, …) and so on).
@@ -240,55 +245,68 @@ class Contact {
     auto of = [&](auto f) {
       return call<decltype(f)::sh>(f, r_<0>, R_<0>, der(r_<0>), der(R_<0>), r_<1>, R_<1>, der(r_<1>), der(R_<1>));
     };
-    return boost::hana::make_tuple(eq(depth, of(quantity<0>{this})), eq(f_n, of(quantity<1>{this})),
-                                   eq(f_t, of(quantity<2>{this})), eq(v_s, of(quantity<3>{this})),
-                                   eq(F_<0>, of(quantity<4>{this})), eq(M_<0>, of(quantity<5>{this})),
-                                   eq(F_<1>, of(quantity<6>{this})), eq(M_<1>, of(quantity<7>{this})));
+    auto point = [&]<int I>(std::integral_constant<int, I>) {
+      constexpr int o = per_point * I;
+      return boost::hana::make_tuple(
+          eq(internal_<2, o + 0, var_kind::scalar>, of(quantity<o + 0>{this})),
+          eq(internal_<2, o + 1, var_kind::scalar>, of(quantity<o + 1>{this})),
+          eq(internal_<2, o + 2, var_kind::scalar>, of(quantity<o + 2>{this})),
+          eq(internal_<2, o + 3, var_kind::scalar>, of(quantity<o + 3>{this})),
+          eq(internal_<2, o + 4, var_kind::vec>, of(quantity<o + 4>{this})));
+    };
+    constexpr int f = per_point * M;
+    auto flows = boost::hana::make_tuple(eq(F_<0>, of(quantity<f + 0>{this})), eq(M_<0>, of(quantity<f + 1>{this})),
+                                         eq(F_<1>, of(quantity<f + 2>{this})), eq(M_<1>, of(quantity<f + 3>{this})));
+    return [&]<int... I>(std::integer_sequence<int, I...>) {
+      return boost::hana::flatten(boost::hana::make_tuple(point(std::integral_constant<int, I>{})..., flows));
+    }(std::make_integer_sequence<int, M>{});
   }
 
  private:
-  /// Quantity Q of the contact from the frames' poses and their rates: δ,
-  /// f_n, f_t, v_s, then the flows F_a, M_a, F_b, M_b (frame coordinates;
-  /// the flows are the negative of what the element exerts).
+  /// Quantity Q of the contact from the frames' poses and their rates: per
+  /// point δ, f_n, f_t, v_s, p, then the flows F_a, M_a, F_b, M_b (frame
+  /// coordinates; the flows are the negative of what the element exerts).
   template <int Q>
   struct quantity {
-    static constexpr expr::shape sh = Q < 4 ? expr::shape::scalar : expr::shape::vec;
-    static constexpr const char* name = Q == 0 ? "contact_depth" : Q == 1 ? "contact_f_n" : Q == 2 ? "contact_f_t"
-                                        : Q == 3 ? "contact_v_s" : Q == 4 ? "contact_F_a" : Q == 5 ? "contact_M_a"
-                                        : Q == 6 ? "contact_F_b" : "contact_M_b";
+    static constexpr int flow = Q - per_point * M;  ///< < 0: a point's quantity
+    static constexpr int point = Q / per_point, what = Q % per_point;
+    static constexpr expr::shape sh =
+        flow < 0 && what < 4 ? expr::shape::scalar : expr::shape::vec;
+    static constexpr std::string_view name =
+        flow < 0 ? detail::contact_quantity_names[what] : detail::contact_flow_names[flow];
     const Contact* c;
-    template <class V, class M>
-    auto operator()(const V& ra, const M& Ra, const V& va, const M& Rda, const V& rb, const M& Rb, const V& vb,
-                    const M& Rdb) const {
+    template <class V, class Mt>
+    auto operator()(const V& ra, const Mt& Ra, const V& va, const Mt& Rda, const V& rb, const Mt& Rb, const V& vb,
+                    const Mt& Rdb) const {
       using T = typename V::Scalar;
-      auto frame = [](const V& r, const M& R, const V& v, const M& Rd) {
+      auto frame = [](const V& r, const Mt& R, const V& v, const Mt& Rd) {
         frame_kinematics<T> k;
         k.r = r;
         k.R = R;
         k.v = v;
-        const M W = R * Rd.transpose();  // ω̃ in frame coordinates
+        const Mt W = R * Rd.transpose();  // ω̃ in frame coordinates
         k.w = Vec3<T>(W(2, 1), W(0, 2), W(1, 0));
         return k;
       };
-      const frame_kinematics<T> a = frame(ra, Ra, va, Rda), b = frame(rb, Rb, vb, Rdb);
-      const auto cp = c->evaluate(a, b);
-      if constexpr (Q == 0) return cp.depth;
-      else if constexpr (Q == 1) return cp.fn;
-      else if constexpr (Q == 2) return cp.ft;
-      else if constexpr (Q == 3) return cp.vs;
-      else if constexpr (Q == 4) return Vec3<T>(-(Ra * cp.force));
-      else if constexpr (Q == 5) return Vec3<T>(-(Ra * (cp.point - ra).cross(cp.force)));
-      else if constexpr (Q == 6) return Vec3<T>(Rb * cp.force);
-      else return Vec3<T>(Rb * (cp.point - rb).cross(cp.force));
+      const frame_kinematics<T> k[2] = {frame(ra, Ra, va, Rda), frame(rb, Rb, vb, Rdb)};
+      if constexpr (flow < 0) {
+        const auto cp = c->evaluate(point, k[0], k[1]);
+        if constexpr (what == 0) return cp.depth;
+        else if constexpr (what == 1) return cp.fn;
+        else if constexpr (what == 2) return cp.ft;
+        else if constexpr (what == 3) return cp.vs;
+        else return cp.point;
+      } else {
+        wrench<T> on[2];
+        c->wrenches(T(0), joint_state<T>{}, k, on);
+        if constexpr (flow == 0) return Vec3<T>(-(Ra * on[0].f));
+        else if constexpr (flow == 1) return Vec3<T>(-(Ra * on[0].n));
+        else if constexpr (flow == 2) return Vec3<T>(-(Rb * on[1].f));
+        else return Vec3<T>(-(Rb * on[1].n));
+      }
     }
   };
 
-  void check_sphere(const char* which, const contact_shape::sphere& s) const {
-    detail::require_finite(name.view(), type_name, which[0] == 'a' ? "a.radius" : "b.radius", s.radius);
-    if (s.radius < 0)
-      throw parameter_error(detail::concat(type_name, " \"", name.view(), "\": sphere ", which, ".radius = ",
-                                           s.radius, " is negative"));
-  }
   void check_material(const char* which, const contact_material& m) const {
     const std::pair<const char*, double> fields[] = {{"stiffness", m.stiffness},
                                                      {"dissipation", m.dissipation},
@@ -305,9 +323,9 @@ class Contact {
                                            ".stiffness = 0; a contact surface needs a stiffness"));
   }
 
-  ShapeA shape_a_;
-  ShapeB shape_b_;
-  double reff_ = 0, s_ = 0.5, k_ = 0, c_ = 0, mu_s_ = 0, mu_d_ = 0, mu_v_ = 0, inv_vt_ = 0;
+  pair_type geometry_{};
+  std::array<double, M> reff_{};
+  double s_ = 0.5, k_ = 0, c_ = 0, mu_s_ = 0, mu_d_ = 0, mu_v_ = 0, inv_vt_ = 0;
 };
 
 }  // namespace flange
