@@ -121,6 +121,8 @@ class Contact {
   /// Needs the frames' positions and velocities (a position pass in the dynamics).
   static constexpr bool needs_motion = true;
   static constexpr bool line_of_action = false;
+  /// Its frames must lie on two bodies (scene.hpp checks).
+  static constexpr bool pairs_two_bodies = true;
   /// A force at each contact point: a force and a torque about each frame's origin.
   static constexpr bool exerts_force = true, exerts_torque = true;
 

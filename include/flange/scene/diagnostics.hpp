@@ -132,6 +132,14 @@ struct force_ends_in_one_set {
 };
 
 template <class Component>
+struct contact_on_one_body {
+  static_assert(always_false<Component>,
+                "flange: both shapes of this Contact are on one body (its frame_a and frame_b are joined rigidly, "
+                "with no joint between them), so they can never touch; pair a shape with one on another body or "
+                "on the World");
+};
+
+template <class Component>
 struct world_load_on_world {
   static_assert(always_false<Component>,
                 "flange: this WorldForce or WorldTorque is connected to the World's own frame, so it acts on nothing "

@@ -231,9 +231,28 @@ class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
     return found;
   }
 
+  // A contact pairs shapes on two bodies: on one (its frames on one link of
+  // the tree) they could never touch.
+  static constexpr int first_contact_on_one_body() {
+    int i = 0, found = -1;
+    (
+        [&] {
+          if constexpr (requires { Cs::pairs_two_bodies; }) {
+            const int a = tree.set_link[topology.set_of[table.frame_base[i]]];
+            const int b = tree.set_link[topology.set_of[table.frame_base[i] + 1]];
+            if (Cs::pairs_two_bodies && found < 0 && a >= 0 && a == b) found = i;
+          }
+          ++i;
+        }(),
+        ...);
+    return found;
+  }
+
  public:
   static_assert(detail::report<topology.ok() ? first_collapsed_force() : -1, diagnostic::force_ends_in_one_set,
                                Cs...>());
+  static_assert(detail::report<topology.ok() && tree.loop < 0 && tree.floating < 0 ? first_contact_on_one_body() : -1,
+                               diagnostic::contact_on_one_body, Cs...>());
   static_assert(detail::report<topology.ok() ? first_load_on_world() : -1, diagnostic::world_load_on_world, Cs...>());
 
   // ---------------------------------------------------------- counts
