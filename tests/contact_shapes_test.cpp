@@ -402,3 +402,35 @@ TEST_CASE("box and capsule parameters are checked at construction") {
   CHECK_THROWS_WITH(Capsule({.a = {.radius = 0.1, .half_length = std::nan("")}, .material_a = m, .material_b = m}),
                     Catch::Contains("a.half_length is not finite"));
 }
+
+TEST_CASE("a scene that starts deep in the ground, or a contact too soft for its load, stops with the pair's name") {
+  const auto s = box(material(cs::dissipation, 0.5, 0.5));
+  // Started with its centre 0.04 m above the ground: 0.06 m deep, more than
+  // half its smallest half extent (0.1 m).
+  try {
+    (void)simulate(s, start({0, 0.04, 0}, Vec3d::Zero()), 0.0, 0.1);
+    FAIL("no error");
+  } catch (const simulation_error& e) {
+    INFO(e.what());
+    CHECK(std::string(e.what()).find("Contact \"box_ground\": its shapes overlap by 0.06") != std::string::npos);
+    CHECK(std::string(e.what()).find(" m at the start") != std::string::npos);
+    CHECK(std::string(e.what()).find("more than half the smaller shape's size (0.1 m)") != std::string::npos);
+    CHECK(e.time == 0);
+  }
+  // A soft contact (E = 1e3 Pa: Hertz's k = 50) under a falling box sinks
+  // through: stopped once it is a half extent deep.
+  contact_material soft = material(cs::dissipation, 0.5, 0.5);
+  soft.stiffness = 1e3;
+  const auto sunk = box(soft);
+  try {
+    (void)simulate(sunk, start({0, box_h.y() + 0.01, 0}, Vec3d::Zero()), 0.0, 2.0);
+    FAIL("no error");
+  } catch (const simulation_error& e) {
+    INFO(e.what());
+    CHECK(std::string(e.what()).find("Contact \"box_ground\": its shapes overlap by") != std::string::npos);
+    CHECK(std::string(e.what()).find("more than the smaller shape's size (0.1 m): the contact is too soft") !=
+          std::string::npos);
+    CHECK(e.time > 0);
+    CHECK(e.state.size() == 13);
+  }
+}

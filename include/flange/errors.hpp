@@ -41,6 +41,14 @@ template <class... Args>
   (os << ... << args);
   return os.str();
 }
+/// A measured number for a message, to 6 digits (concat prints 17, which
+/// a state needs and a depth or a size does not).
+[[nodiscard]] inline std::string brief(double x) {
+  std::ostringstream os;
+  os.precision(6);
+  os << x;
+  return os.str();
+}
 }  // namespace detail
 
 }  // namespace flange

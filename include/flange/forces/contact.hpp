@@ -201,6 +201,14 @@ class Contact {
     return cp;
   }
 
+  /// The deepest overlap of its points (0 where apart): a breakdown check
+  /// compares it with the smaller shape's size, geometry().size().
+  [[nodiscard]] double deepest(const frame_kinematics<double>* k) const {
+    double d = 0;
+    for (int i = 0; i < M; ++i) d = std::max(d, geometry_.overlap(i, k[0], k[1]).depth);
+    return d;
+  }
+
   /// What the element exerts on the rest of the scene at each of its frames:
   /// force and torque (about the frame's origin), world coordinates.
   template <class T>

@@ -24,6 +24,7 @@
 // box's surface: the effective radius is the sphere's (a face's), also at
 // edges and corners.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string_view>
@@ -127,8 +128,10 @@ contact_overlap<T> sphere_half_space(const Vec3<T>& c, double r, const contact_s
   return o;
 }
 
-/// The geometry of the pair (A at frame_a, B at frame_b); the primary
-/// template is a pair that is not supported.
+/// The geometry of the pair (A at frame_a, B at frame_b): its points, each
+/// point's effective radius, the size of its smaller shape (a sphere's or a
+/// capsule's radius, a box's smallest half extent), and each point's
+/// overlap. The primary template is a pair that is not supported.
 template <class A, class B>
 struct contact_pair {
   static constexpr bool supported = false;
@@ -141,6 +144,7 @@ struct contact_pair<contact_shape::sphere, contact_shape::half_space> {
   contact_shape::sphere a;
   contact_shape::half_space b;
   [[nodiscard]] double radius(int) const { return a.radius; }
+  [[nodiscard]] double size() const { return a.radius; }
   template <class T>
   [[nodiscard]] contact_overlap<T> overlap(int, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
     return sphere_half_space(ka.r, a.radius, b, kb);
@@ -153,6 +157,7 @@ struct contact_pair<contact_shape::sphere, contact_shape::sphere> {
   static constexpr int points = 1;
   contact_shape::sphere a, b;
   [[nodiscard]] double radius(int) const { return a.radius * b.radius / (a.radius + b.radius); }
+  [[nodiscard]] double size() const { return std::min(a.radius, b.radius); }
   template <class T>
   [[nodiscard]] contact_overlap<T> overlap(int, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
     using std::sqrt;
@@ -174,6 +179,7 @@ struct contact_pair<contact_shape::capsule, contact_shape::half_space> {
   contact_shape::capsule a;
   contact_shape::half_space b;
   [[nodiscard]] double radius(int) const { return a.radius; }
+  [[nodiscard]] double size() const { return a.radius; }
   template <class T>
   [[nodiscard]] contact_overlap<T> overlap(int i, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
     const Vec3d end = a.center + (i == 0 ? -a.half_length : a.half_length) * a.axis;
@@ -195,6 +201,7 @@ struct contact_pair<contact_shape::box, contact_shape::half_space> {
     return a.center + a.axes.transpose() * s;
   }
   [[nodiscard]] double radius(int) const { return a.corner_radius; }
+  [[nodiscard]] double size() const { return a.half_extents.minCoeff(); }
   template <class T>
   [[nodiscard]] contact_overlap<T> overlap(int i, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
     return sphere_half_space(Vec3<T>(ka.r + ka.R.transpose() * corner(i).template cast<T>()), a.corner_radius, b, kb);
@@ -208,6 +215,7 @@ struct contact_pair<contact_shape::sphere, contact_shape::box> {
   contact_shape::sphere a;
   contact_shape::box b;
   [[nodiscard]] double radius(int) const { return a.radius; }
+  [[nodiscard]] double size() const { return std::min(a.radius, b.half_extents.minCoeff()); }
   template <class T>
   [[nodiscard]] contact_overlap<T> overlap(int, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
     using std::abs;

@@ -14,8 +14,9 @@
 //   3. hands the step to its watcher: an observer, an ensemble's recorders,
 //      samples at requested times (through the stepper's interpolation,
 //      projected like the steps' ends).
-// A step size that collapses, a state that leaves its loops beyond repair
-// and a non-finite start throw simulation_error with the time, the state and
+// A step size that collapses, a state that leaves its loops beyond repair,
+// a non-finite start and a Contact whose shapes overlap too deeply
+// (contact_check.hpp) throw simulation_error with the time, the state and
 // the reason. A new way to integrate is a stepping adapter or a watcher, not
 // a copy of this loop.
 #pragma once
@@ -25,6 +26,7 @@
 
 #include "flange/errors.hpp"
 #include "flange/simulate/checked.hpp"
+#include "flange/simulate/contact_check.hpp"
 #include "flange/simulate/stepping.hpp"
 #include "flange/simulate/system.hpp"
 
@@ -103,6 +105,7 @@ long integrate(Stepping& st, System& sys, const S& scene, State& x, double t0, d
     fail_at("the state is not finite", x, t0);  // the initial state
   check_coordinates(scene, x);
   check_loops(scene, x);
+  check_contact_depths(scene, x, t0, true);
   if constexpr (project) restore_invariants(scene, x, t0);
   st.start(x, t0, dt, t1);
   watcher.start(x, t0);
@@ -120,6 +123,7 @@ long integrate(Stepping& st, System& sys, const S& scene, State& x, double t0, d
               st.state(), c.t);
     }
     check.after(st.previous_state(), st.previous_time(), st.state(), st.time());
+    check_contact_depths(scene, st.state(), st.time(), false);
     if constexpr (project) {
       State y = st.state();
       restore_invariants(scene, y, st.time());
