@@ -434,3 +434,29 @@ TEST_CASE("a scene that starts deep in the ground, or a contact too soft for its
     CHECK(e.state.size() == 13);
   }
 }
+
+TEST_CASE("a BodyBox and a BodyCylinder lend their shapes to a Contact in one line") {
+  // A BodyBox 0.4 m along (1, 0, 1)/√2 from frame_a, 0.1 wide along y, 0.05 high.
+  const Vec3d r = 0.4 * Vec3d(1, 0, 1).normalized();
+  const BodyBox<"crate"> crate({.r = r, .width = 0.1, .height = 0.05});
+  const auto b = contact_shape::box_of(crate, 0.005);
+  CHECK((b.half_extents - Vec3d(0.2, 0.05, 0.025)).norm() < 1e-15);
+  CHECK((b.center - r / 2).norm() < 1e-15);
+  CHECK((b.axes.row(0).transpose() - r.normalized()).norm() < 1e-15);
+  CHECK((b.axes * b.axes.transpose() - Mat3d::Identity()).norm() < 1e-15);
+  CHECK(b.corner_radius == 0.005);
+  CHECK(contact_shape::box_of(crate, 1.0).corner_radius == 0.025);  // at most the smallest half extent
+  // Its box's corners: frame_a's origin and r are the centres of two opposite faces.
+  const detail::contact_pair<contact_shape::box, contact_shape::half_space> pair{b, {}};
+  for (int i = 0; i < 8; ++i) {
+    const double along = pair.corner(i).dot(r.normalized());
+    CHECK(std::abs(std::abs(along - 0.2) - (0.2 - 0.005)) < 1e-15);
+  }
+  // A BodyCylinder 0.5 m long along x, 0.1 across: the capsule of its radius and length.
+  const BodyCylinder<"roller"> roller({.r = {0.5, 0, 0}, .diameter = 0.1});
+  const auto c = contact_shape::capsule_of(roller);
+  CHECK(c.radius == 0.05);
+  CHECK(std::abs(c.half_length - 0.2) < 1e-15);
+  CHECK((c.center - Vec3d(0.25, 0, 0)).norm() < 1e-15);
+  CHECK((c.axis - Vec3d::UnitX()).norm() < 1e-15);
+}

@@ -62,6 +62,7 @@ struct shaped_body {
   Mat3d I;
   Vec3d r_cm;
   Vec3d size;  ///< box: length, width, height; cylinder: length, diameter, inner diameter
+  Mat3d axes = Mat3d::Identity();  ///< the shape's axes (rows: along r, width, height) in frame_a
 };
 
 }  // namespace detail
@@ -127,6 +128,9 @@ class BodyShape {
   /// The shape's sizes (box: length, width, height; cylinder: length,
   /// diameter, inner diameter; BodyShape: zero), for drawing.
   [[nodiscard]] const Vec3d& size() const { return body_.size; }
+  /// The shape's axes in frame_a (rows: along r, then the width's and the
+  /// height's directions; a cylinder's last two across its axis).
+  [[nodiscard]] const Mat3d& axes() const { return body_.axes; }
   [[nodiscard]] Mat3d inertia_about_frame() const { return detail::inertia_about_origin(body_.m, body_.I, body_.r_cm); }
   /// The wrench the body needs at frame_a for frame_a's motion k (its
   /// share of F₁, M₁; recovery adds what frame_b passes on).
@@ -191,7 +195,7 @@ class BodyShape {
     const double m = p.density * l * w * h;
     const Vec3d D(m * (w * w + h * h) / 12, m * (l * l + h * h) / 12, m * (l * l + w * w) / 12);
     const Mat3d T = detail::shape_axes(p.r, p.width_direction);
-    return {m, T.transpose() * D.asDiagonal() * T, p.r / 2, Vec3d(l, w, h)};
+    return {m, T.transpose() * D.asDiagonal() * T, p.r / 2, Vec3d(l, w, h), T};
   }
   static detail::shaped_body make(const cylinder_params& p) {
     const double l = p.r.norm();
@@ -206,7 +210,7 @@ class BodyShape {
     const double axial = (mo * ro * ro - mi * ri * ri) / 2;
     const double across = (mo * (l * l + 3 * ro * ro) - mi * (l * l + 3 * ri * ri)) / 12;
     const Mat3d T = detail::shape_axes(p.r, Vec3d(0, 1, 0));
-    return {mo - mi, T.transpose() * Vec3d(axial, across, across).asDiagonal() * T, p.r / 2, Vec3d(l, d, di)};
+    return {mo - mi, T.transpose() * Vec3d(axial, across, across).asDiagonal() * T, p.r / 2, Vec3d(l, d, di), T};
   }
 
   Vec3d r_b_;

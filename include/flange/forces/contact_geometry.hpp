@@ -30,6 +30,7 @@
 #include <string_view>
 #include <type_traits>
 
+#include "flange/components/body_shape.hpp"
 #include "flange/core/component.hpp"
 #include "flange/core/frame_kinematics.hpp"
 
@@ -60,6 +61,24 @@ struct capsule {
   Vec3d center = Vec3d::Zero();   ///< [m], frame coordinates
   Vec3d axis = Vec3d::UnitZ();    ///< unit, frame coordinates
 };
+
+/// A BodyBox's box as contact geometry, at the BodyBox's frame_a:
+/// .a = contact_shape::box_of(crate) (its edges rounded by corner_radius,
+/// at most its smallest half extent).
+template <fixed_string N>
+[[nodiscard]] box box_of(const BodyShape<N, shape_kind::box>& b, double corner_radius = 1e-3) {
+  const Vec3d h = b.size() / 2;
+  return {.half_extents = h, .center = b.r() / 2, .axes = b.axes(), .corner_radius = std::min(corner_radius, h.minCoeff())};
+}
+/// A BodyCylinder's cylinder as a capsule at its frame_a, of its outer
+/// radius and its overall length (the caps' ends at its end faces' centres,
+/// so that it rests on its side as the cylinder does; stood on an end it
+/// balances on a cap): .a = contact_shape::capsule_of(roller).
+template <fixed_string N>
+[[nodiscard]] capsule capsule_of(const BodyShape<N, shape_kind::cylinder>& c) {
+  const double r = c.size().y() / 2, l = c.size().x();
+  return {.radius = r, .half_length = std::max(0.0, l / 2 - r), .center = c.r() / 2, .axis = c.axes().row(0).transpose()};
+}
 }  // namespace contact_shape
 
 namespace detail {
