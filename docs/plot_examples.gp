@@ -4,6 +4,8 @@
 #   build/examples/buffered_crane --csv docs/buffered_crane.csv
 #   build/examples/spinning_top --csv docs/spinning_top.csv
 #   build/examples/tumbling_body --csv docs/tumbling_body.csv
+#   build/examples/bouncing_ball --csv docs/bouncing_ball.csv
+#   build/examples/quadruped_stand --csv docs/quadruped_stand.csv
 #   gnuplot docs/plot_examples.gp        (from the repository root)
 set datafile separator ","
 set terminal pngcairo size 900,640 font "DejaVu Sans,10" noenhanced
@@ -73,4 +75,32 @@ set ylabel "relative change × 1e12"
 set xlabel "t [s]"
 plot "docs/tumbling_body.csv" using 1:($7*1e12) with lines lw 2 title "kinetic energy", \
      "" using 1:($8*1e12) with lines lw 1 title "angular momentum in the world, |L − L(0)| / |L(0)|"
+unset multiplot
+
+set output "docs/bouncing_ball.png"
+unset xlabel
+set multiplot layout 3,1 title "flange bouncing ball: thrown with backspin onto the ground (Contact: Hunt–Crossley, Stribeck friction)"
+set ylabel "height [m]"
+plot "docs/bouncing_ball.csv" using 1:3 with lines lw 2 title "centre height y", \
+     0.05 with lines dt 2 title "radius (touching)"
+set ylabel "[m/s]"
+plot "docs/bouncing_ball.csv" using 1:4 with lines lw 2 title "forward speed v_x", \
+     "" using 1:(-$6*0.05) with lines lw 1 title "rolling speed −ω_z·r (equal once it rolls)"
+set ylabel "energy [J]"
+set xlabel "t [s]"
+plot "docs/bouncing_ball.csv" using 1:11 with lines lw 2 title "kinetic + potential + contact elastic energy"
+unset multiplot
+
+set output "docs/quadruped_stand.png"
+unset xlabel
+set multiplot layout 2,1 title "flange quadruped: dropped 4 cm in a crouch, stands under one PD law read by joint name"
+set ylabel "trunk height [m]"
+plot "docs/quadruped_stand.csv" using 1:2 with lines lw 2 title "trunk centre y"
+set ylabel "normal force [N]"
+set xlabel "t [s]"
+plot "docs/quadruped_stand.csv" using 1:3 with lines lw 1 title "foot0 (hip at +x, +z)", \
+     "" using 1:4 with lines lw 1 title "foot1 (−x, +z)", \
+     "" using 1:5 with lines lw 1 title "foot2 (+x, −z)", \
+     "" using 1:6 with lines lw 1 title "foot3 (−x, −z)", \
+     "" using 1:($7*42.183) with lines lw 2 dt 2 title "their sum / 4"
 unset multiplot
