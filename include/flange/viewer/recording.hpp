@@ -9,7 +9,10 @@
 //
 // Drawn: every Body as a sphere at its centre of mass (radius from its mass),
 // BodyBox and BodyCylinder with their shapes, FixedTranslation and
-// FixedRotation as rods, joints as small markers, the World's axes. Frames
+// FixedRotation as rods, joints as small markers, the World's axes; each
+// Contact's shapes (a half-space as a square 4 m across) and, at each
+// sample, an arrow per contact point for the force on frame_a's shape
+// (0.3 m for the 90th percentile of the forces while touching). Frames
 // are recorded as poses (r, and the orientation as a quaternion) at each
 // observed time; drawables refer to frames, so the page size grows with
 // frames × samples. Not in the umbrella header (it reads a file and uses
@@ -22,12 +25,14 @@
 #include <functional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "flange/components/body_shape.hpp"
 #include "flange/dynamics/model.hpp"
 #include "flange/dynamics/recover.hpp"
 #include "flange/errors.hpp"
+#include "flange/forces/contact.hpp"
 
 namespace flange::viewer {
 
@@ -90,6 +95,7 @@ class recording {
   void reserve(std::size_t n) {
     times_.reserve(n);
     poses_.reserve(n * 7 * S::n_frames);
+    arrows_.reserve(n * 6 * contact_points());
     for (auto& x : series_) x.values.reserve(n);
   }
   /// Records one observed solution (recover's).
@@ -101,12 +107,37 @@ class recording {
       poses_.insert(poses_.end(), {k.r.x(), k.r.y(), k.r.z(), q.x(), q.y(), q.z(), q.w()});
     }
     for (auto& x : series_) x.values.push_back(x.f(s));
+    // Each contact point's force on frame_a's shape, where it acts.
+    flange::detail::for_each_component(scene_, [&](auto i, const auto& c) {
+      using C = std::remove_cvref_t<decltype(c)>;
+      if constexpr (requires { C::pairs_two_bodies; }) {
+        constexpr int f = S::table.frame_base[decltype(i)::value];
+        for (int k = 0; k < C::points; ++k) {
+          const auto cp = c.evaluate(k, s.frames[f], s.frames[f + 1]);
+          arrows_.insert(arrows_.end(), {cp.point.x(), cp.point.y(), cp.point.z(), cp.force.x(), cp.force.y(),
+                                         cp.force.z()});
+        }
+      }
+    });
   }
   /// An observer for record(scene, …).
   auto observer() {
     return [this](const solution& s) { add(s); };
   }
   [[nodiscard]] std::size_t samples() const { return times_.size(); }
+  /// The scene's contact points (an arrow each at every sample).
+  static constexpr int contact_points() {
+    int n = 0;
+    [&]<int... C>(std::integer_sequence<int, C...>) {
+      (
+          [&] {
+            using Comp = typename S::template component_type<C>;
+            if constexpr (requires { Comp::pairs_two_bodies; }) n += Comp::points;
+          }(),
+          ...);
+    }(std::make_integer_sequence<int, S::n_components>{});
+    return n;
+  }
 
   /// Writes the page: the recording as JSON, the player, and three.js
   /// (read from three_js_path and inlined, so the page works offline).
@@ -135,11 +166,40 @@ class recording {
     std::vector<double> values;
   };
 
+  // A Contact's shape at its frame: "shape" items the player draws pale.
+  template <class Item>
+  static void contact_shape_item(Item& item, std::string_view name, int f, const contact_shape::sphere& s) {
+    item("contact_sphere", name, f, {0, 0, 0, s.radius});
+  }
+  template <class Item>
+  static void contact_shape_item(Item& item, std::string_view name, int f, const contact_shape::box& b) {
+    const Eigen::Quaterniond q = detail::quat(b.axes.transpose());
+    item("contact_box", name, f,
+         {b.center.x(), b.center.y(), b.center.z(), q.x(), q.y(), q.z(), q.w(), 2 * b.half_extents.x(),
+          2 * b.half_extents.y(), 2 * b.half_extents.z()});
+  }
+  template <class Item>
+  static void contact_shape_item(Item& item, std::string_view name, int f, const contact_shape::capsule& c) {
+    // three's capsule runs along y: turned onto the axis.
+    const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(Vec3d::UnitY(), c.axis);
+    item("contact_capsule", name, f,
+         {c.center.x(), c.center.y(), c.center.z(), q.x(), q.y(), q.z(), q.w(), c.radius, 2 * c.half_length});
+  }
+  template <class Item>
+  static void contact_shape_item(Item& item, std::string_view name, int f, const contact_shape::half_space& h) {
+    // A square 4 m across on the boundary, its normal along n.
+    const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(Vec3d::UnitZ(), h.n);
+    const Vec3d c = h.offset * h.n;
+    item("contact_plane", name, f, {c.x(), c.y(), c.z(), q.x(), q.y(), q.z(), q.w(), 4.0});
+  }
+
   void json(std::ostream& o, const std::string& title) const {
     o << "{\"title\":\"" << title << "\",\"nframes\":" << S::n_frames << ",\"t\":[";
     for (std::size_t i = 0; i < times_.size(); ++i) o << (i ? "," : ""), detail::number(o, times_[i]);
     o << "],\"poses\":[";
     for (std::size_t i = 0; i < poses_.size(); ++i) o << (i ? "," : ""), detail::number(o, poses_[i]);
+    o << "],\"arrows\":[";
+    for (std::size_t i = 0; i < arrows_.size(); ++i) o << (i ? "," : ""), detail::number(o, arrows_[i]);
     o << "],\"series\":[";
     for (std::size_t j = 0; j < series_.size(); ++j) {
       o << (j ? "," : "") << "{\"name\":\"" << series_[j].name << "\",\"v\":[";
@@ -182,6 +242,9 @@ class recording {
         item("joint", C::name.view(), f, {});
       } else if constexpr (C::kind == role::world) {
         item("world", C::name.view(), f, {});
+      } else if constexpr (requires { C::pairs_two_bodies; }) {
+        contact_shape_item(item, C::name.view(), f, c.geometry().a);
+        contact_shape_item(item, C::name.view(), f + 1, c.geometry().b);
       }
     });
     o << "]}";
@@ -230,15 +293,43 @@ for (const it of data.items) {
     scene.add(line); rods.push({line: line, a: it.frame, b: p[0]}); continue;
   }
   else if (it.kind === 'world') { frames[it.frame].add(new THREE.AxesHelper(0.3)); continue; }
+  else if (it.kind.startsWith('contact_')) {
+    // A contact shape: pale and translucent, over the body's own drawing.
+    const pale = new THREE.MeshStandardMaterial({color: it.kind === 'contact_plane' ? 0xc8c8c8 : 0x9e9e9e, roughness: 0.8, transparent: true, opacity: it.kind === 'contact_plane' ? 0.3 : 0.45, side: THREE.DoubleSide, depthWrite: it.kind !== 'contact_plane'});
+    if (it.kind === 'contact_sphere') m = new THREE.Mesh(new THREE.SphereGeometry(p[3], 24, 16), pale);
+    else if (it.kind === 'contact_box') m = new THREE.Mesh(new THREE.BoxGeometry(p[7], p[8], p[9]), pale);
+    else if (it.kind === 'contact_capsule') m = new THREE.Mesh(new THREE.CapsuleGeometry(p[7], p[8], 8, 16), pale);
+    else if (it.kind === 'contact_plane') m = new THREE.Mesh(new THREE.PlaneGeometry(p[7], p[7]), pale);
+    m.position.set(p[0], p[1], p[2]);
+    if (it.kind !== 'contact_sphere') m.quaternion.set(p[3], p[4], p[5], p[6]);
+  }
   if (m) { frames[it.frame].add(m); ++meshes; }
 }
+// One arrow per contact point: the force on frame_a's shape at its point,
+// 0.3 m for the 90th percentile of the forces while touching (impacts
+// longer, up to 0.6 m).
+const A = data.arrows.length / (6 * Math.max(n, 1)), arrows = [];
+const touching = [];
+for (let q = 0; q < data.arrows.length; q += 6) { const f = Math.hypot(data.arrows[q + 3], data.arrows[q + 4], data.arrows[q + 5]); if (f > 0) touching.push(f); }
+touching.sort((a, b) => a - b);
+const fmax = touching.length ? touching[Math.floor(0.9 * (touching.length - 1))] : 0;
+for (let a = 0; a < A; ++a) { const h = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 0.1, 0xc0392b); h.visible = false; scene.add(h); arrows.push(h); }
 // The camera looks at the middle of everything the recording visits.
 const box = new THREE.Box3();
 for (let i = 0; i < n; ++i) for (let f = 0; f < F; ++f) { const o = (i * F + f) * 7; box.expandByPoint(new THREE.Vector3(data.poses[o], data.poses[o + 1], data.poses[o + 2])); }
 const center = box.getCenter(new THREE.Vector3()), radius = Math.max(box.getSize(new THREE.Vector3()).length(), 0.5);
 let az = -0.9, el = 0.45, dist = 1.3 * radius;
+// Up is z, or a ground's normal where a contact has one (the camera stays on its open side).
+const up = new THREE.Vector3(0, 0, 1);
+for (const it of data.items) if (it.kind === 'contact_plane') { up.set(0, 0, 1).applyQuaternion(new THREE.Quaternion(it.p[3], it.p[4], it.p[5], it.p[6])); break; }
+const e1 = new THREE.Vector3(1, 0, 0);
+if (Math.abs(e1.dot(up)) > 0.9) e1.set(0, 1, 0);
+e1.addScaledVector(up, -e1.dot(up)).normalize();
+const e2 = new THREE.Vector3().crossVectors(up, e1);
+camera.up.copy(up);
 function place() {
-  camera.position.set(center.x + dist * Math.cos(el) * Math.cos(az), center.y + dist * Math.cos(el) * Math.sin(az), center.z + dist * Math.sin(el));
+  camera.position.copy(center).addScaledVector(e1, dist * Math.cos(el) * Math.cos(az))
+      .addScaledVector(e2, dist * Math.cos(el) * Math.sin(az)).addScaledVector(up, dist * Math.sin(el));
   camera.lookAt(center);
 }
 let drag = null;
@@ -270,7 +361,7 @@ const slider = document.getElementById('time'), clock = document.getElementById(
 let k = 0, playing = true, shown = 0;
 const moved = new THREE.Vector3();
 let starts = [];
-let travel = 0;
+let travel = 0, arrowsShown = 0;
 function show(i) {
   k = i;
   for (let f = 0; f < F; ++f) {
@@ -280,6 +371,16 @@ function show(i) {
   for (const r of rods) {
     const a = (i * F + r.a) * 7, b = (i * F + r.b) * 7, P = data.poses, pos = r.line.geometry.attributes.position;
     pos.setXYZ(0, P[a], P[a + 1], P[a + 2]); pos.setXYZ(1, P[b], P[b + 1], P[b + 2]); pos.needsUpdate = true;
+  }
+  for (let a = 0; a < A; ++a) {
+    const o = (i * A + a) * 6, P = data.arrows, f = Math.hypot(P[o + 3], P[o + 4], P[o + 5]);
+    arrows[a].visible = f > 0 && fmax > 0;
+    if (arrows[a].visible) {
+      const len = Math.min(0.6, 0.3 * f / fmax);
+      arrows[a].position.set(P[o], P[o + 1], P[o + 2]);
+      arrows[a].setDirection(new THREE.Vector3(P[o + 3] / f, P[o + 4] / f, P[o + 5] / f));
+      arrows[a].setLength(len, Math.min(0.05, 0.3 * len), Math.min(0.03, 0.2 * len));
+    }
   }
   place(); renderer.render(scene, camera); drawPlot(i);
   slider.value = i; clock.textContent = 't = ' + data.t[i].toFixed(3) + ' s';
@@ -294,7 +395,8 @@ function show(i) {
     for (let q = 0; q < px.length; q += 4) if (Math.abs(px[q] - 250) + Math.abs(px[q + 1] - 250) + Math.abs(px[q + 2] - 250) > 30) ++drawn;
     status.dataset.pixels = drawn;
   }
-  status.textContent = 'drew ' + meshes + ' objects; showed ' + shown + ' samples; the frames moved up to ' + travel.toFixed(3) + ' m; ' + (status.dataset.pixels || 0) + ' pixels drawn';
+  arrowsShown = Math.max(arrowsShown, arrows.filter(a => a.visible).length);
+  status.textContent = 'drew ' + meshes + ' objects; showed ' + shown + ' samples; the frames moved up to ' + travel.toFixed(3) + ' m; ' + (status.dataset.pixels || 0) + ' pixels drawn' + (A ? '; up to ' + arrowsShown + ' of ' + A + ' contact forces drawn at once' : '');
 }
 slider.addEventListener('input', () => { playing = false; button.textContent = 'play'; show(+slider.value); });
 button.addEventListener('click', () => { playing = !playing; button.textContent = playing ? 'pause' : 'play'; if (playing && k >= n - 1) k = 0; });
@@ -318,7 +420,7 @@ requestAnimationFrame(tick);
   const S& scene_;
   std::vector<series> series_;
   bool custom_ = false;
-  std::vector<double> times_, poses_;
+  std::vector<double> times_, poses_, arrows_;
 };
 
 }  // namespace flange::viewer
