@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <flange/flange.hpp>
+#include <flange/models/ball.hpp>
 #include <flange/models/legged.hpp>
 
 using namespace flange;
@@ -48,21 +49,12 @@ void compare(const char* name, int pairs, const With& with, const typename With:
   std::printf("contact %s pairs=%d with_ns=%.1f without_ns=%.1f\n", name, pairs, a[3], b[3]);
 }
 
-auto ball() {
-  const contact_material m{.stiffness = 1e7, .dissipation = 0.5, .static_friction = 0.8, .dynamic_friction = 0.6};
-  return scene(World<"world">{}, FreeMotion<"fly">{}, Body<"ball">({.m = 1.0, .J = Mat3d::Identity() * 0.004}),
-               Contact<"ball_ground", contact_shape::sphere, contact_shape::half_space>(
-                   {.a = {.radius = 0.1}, .b = {.n = {0, 1, 0}}, .material_a = m, .material_b = m}),
-               connect<"world.frame_b", "fly.frame_a">, connect<"fly.frame_b", "ball.frame_a">,
-               connect<"fly.frame_b", "ball_ground.frame_a">, connect<"world.frame_b", "ball_ground.frame_b">);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   const long n = argc > 1 ? std::atol(argv[1]) : 200000;
   {
-    const auto with = ball();
+    const auto with = models::ball_on_ground();
     const auto without = scene(World<"world">{}, FreeMotion<"fly">{}, Body<"ball">({.m = 1.0, .J = Mat3d::Identity() * 0.004}),
                                connect<"world.frame_b", "fly.frame_a">, connect<"fly.frame_b", "ball.frame_a">);
     // 1 mm into the ground, sliding and spinning.
