@@ -25,26 +25,6 @@
 
 using namespace flange;
 
-/// Joint "j<100·K + J>"'s J: its place on its leg, counted from the hip.
-template <auto Name>
-constexpr int place_on_leg() {
-  int n = 0;
-  for (char c : Name.view().substr(1)) n = 10 * n + (c - '0');
-  return n % 100;
-}
-
-/// One PD law for every joint, toward the crouch.
-struct crouch {
-  double kp, kd;
-  template <class Tag, class T, class X>
-  T operator()(Tag, const T&, const X& x) const {
-    constexpr auto name = Tag::name;
-    constexpr int J = place_on_leg<name>();
-    constexpr double target = J == 1 ? 0.4 : J == 2 ? -0.8 : 0.0;
-    return T(kp) * (T(target) - q<name>(x)) - T(kd) * v<name>(x);
-  }
-};
-
 int main(int argc, char** argv) {
   const char* csv = "quadruped_stand.csv";
   const char* html = nullptr;
@@ -60,16 +40,14 @@ int main(int argc, char** argv) {
   // Rubber feet (a 3 cm sphere each) on the ground 0.78 m below the trunk's
   // centre: with straight legs the feet just touch it.
   const models::legged_params p{.transition_velocity = 0.03};
-  const auto robot = models::legged<4, 3, true, true>(p, crouch{1000 * gains, 50 * gains});
+  const auto robot = models::legged<4, 3, true, true>(p, models::crouch_drive{.kp = 1000 * gains, .kd = 50 * gains});
   using Robot = decltype(robot);
   if (equations) {
     print_equations(robot, std::cout);
     return 0;
   }
   // Crouched, its feet 4 cm above the ground, at rest.
-  auto x0 = neutral_state(robot);
-  for (const char* knee : {"j1", "j101", "j201", "j301"}) x0[Robot::q_offset(knee)] = 0.4;
-  for (const char* ankle : {"j2", "j102", "j202", "j302"}) x0[Robot::q_offset(ankle)] = -0.8;
+  const auto x0 = models::crouched_state(robot);
   const auto run = simulate(robot, x0, output_times(0.0, 3.0, 0.005), {.tolerance = 1e-9});
 
   const double weight = (p.trunk_mass + 12 * p.link_mass) * 9.81;

@@ -11,42 +11,17 @@
 using namespace flange;
 
 namespace {
-/// Joint "j<100·K + J>"'s J: its place on its leg, counted from the hip.
-template <auto Name>
-constexpr int place_on_leg() {
-  int n = 0;
-  for (char c : Name.view().substr(1)) n = 10 * n + (c - '0');
-  return n % 100;
-}
-
-/// A PD law toward a crouch (knee 0.4 rad, ankle −0.8 rad: each foot under its hip), one for every joint.
-struct crouch {
-  double kp, kd;
-  template <class Tag, class T, class X>
-  T operator()(Tag, const T&, const X& x) const {
-    constexpr auto name = Tag::name;
-    constexpr int J = place_on_leg<name>();
-    constexpr double ref = J == 1 ? 0.4 : J == 2 ? -0.8 : 0.0;
-    return T(kp) * (T(ref) - q<name>(x)) - T(kd) * v<name>(x);
-  }
-};
-
 // Below v_t a foot's friction is a viscous μ·f_n·v/v_t: a foot loaded
 // sideways creeps until the legs' PD laws take the load off it, with a
 // time constant of about (μ·f_n/v_t)/(the leg's stiffness at the foot,
 // ~k_p/ℓ²): 0.09 s with v_t = 3 cm/s and k_p = 1000 N m/rad, so that the
 // stance is steady to 1e-6 m within a second or two.
 const models::legged_params params{.transition_velocity = 0.03};
-auto robot(double kp, double kd) { return models::legged<4, 3, true, true>(params, crouch{kp, kd}); }
+auto robot(double kp, double kd) { return models::legged<4, 3, true, true>(params, models::crouch_drive{kp, kd}); }
 using Robot = decltype(robot(0, 0));
 
 /// Standing at y = 0 in the crouch, its feet 4 cm above the ground.
-Robot::state_type crouched(const Robot& s) {
-  auto x = neutral_state(s);
-  for (const char* knee : {"j1", "j101", "j201", "j301"}) x[Robot::q_offset(knee)] = 0.4;
-  for (const char* ankle : {"j2", "j102", "j202", "j302"}) x[Robot::q_offset(ankle)] = -0.8;
-  return x;
-}
+Robot::state_type crouched(const Robot& s) { return models::crouched_state(s); }
 
 double total_mass() { return params.trunk_mass + 12 * params.link_mass; }
 

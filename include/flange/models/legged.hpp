@@ -20,6 +20,7 @@
 #include <boost/hana/unpack.hpp>
 
 #include "flange/components/body.hpp"
+#include "flange/detail/static_for.hpp"
 #include "flange/components/fixed_translation.hpp"
 #include "flange/components/world.hpp"
 #include "flange/forces/contact.hpp"
@@ -100,6 +101,30 @@ auto leg(const legged_params& p, const Drive& drive) {
 }
 }  // namespace detail
 
+/// Joint "j<100·K + J>"'s J: its place on its leg, counted from the hip.
+template <auto Name>
+constexpr int place_on_leg() {
+  int n = 0;
+  for (char c : Name.view().substr(1)) n = 10 * n + (c - '0');
+  return n % 100;
+}
+
+/// One PD law for every joint of a legged robot, toward a crouch: the
+/// second joint of each leg at knee, the third at ankle (−2·knee keeps each
+/// foot under its hip), the others at 0. A drive for legged(p, drive): it
+/// reads each joint by its name.
+struct crouch_drive {
+  double kp = 1000, kd = 50;  ///< [N m/rad], [N m s/rad]
+  double knee = 0.4;          ///< [rad]
+  template <class Tag, class T, class X>
+  T operator()(Tag, const T&, const X& x) const {
+    constexpr auto name = Tag::name;
+    constexpr int J = place_on_leg<name>();
+    const double target = J == 1 ? knee : J == 2 ? -2 * knee : 0.0;
+    return T(kp) * (T(target) - q<name>(x)) - T(kd) * v<name>(x);
+  }
+};
+
 /// The floating-base robot (see above).
 template <int Legs = 4, int Links = 3, bool Feet = false, bool Belly = false, class Drive = undriven_legs>
 auto legged(const legged_params& p = {}, Drive drive = {}) {
@@ -122,6 +147,20 @@ auto legged(const legged_params& p = {}, Drive drive = {}) {
     return hana::flatten(hana::make_tuple(detail::leg<K, Links, Feet>(p, drive)...));
   }(std::make_integer_sequence<int, Legs>{});
   return hana::unpack(hana::concat(hana::concat(base, belly), legs), [](auto... a) { return scene(std::move(a)...); });
+}
+
+/// The robot at rest in crouch_drive's crouch (knees at `knee`, ankles at
+/// −2·knee, the trunk at the origin, level): with the default legs and
+/// ground, its feet 4 cm above the ground for knee = 0.4.
+template <int Legs = 4, class S>
+[[nodiscard]] typename S::state_type crouched_state(const S& scene, double knee = 0.4) {
+  auto x = neutral_state(scene);
+  flange::detail::static_for<Legs>([&](auto k) {
+    constexpr int K = decltype(k)::value;
+    x[S::q_offset(indexed_name<"j", 100 * K + 1>().view())] = knee;
+    x[S::q_offset(indexed_name<"j", 100 * K + 2>().view())] = -2 * knee;
+  });
+  return x;
 }
 
 }  // namespace flange::models
