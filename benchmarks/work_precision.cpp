@@ -23,6 +23,7 @@
 
 #include <flange/flange.hpp>
 #include <flange/models/chain.hpp>
+#include <flange/models/ball.hpp>
 #include <flange/models/legged.hpp>
 #include <flange/models/paper.hpp>
 #include <flange/simulate/rosenbrock4.hpp>
@@ -47,12 +48,14 @@ void keep(const X& x) {
 /// (constant mass matrix, no velocity-dependent forces).
 template <class S>
 void study_scene(const std::string& name, const S& s, typename S::state_type x0, double T, bool symplectic,
-                 const options& o, std::vector<study::point>& out, std::ostream& refs) {
+                 const options& o, std::vector<study::point>& out, std::ostream& refs,
+                 study::reference_stepper reference = study::reference_stepper::fehlberg78) {
   if (!o.scene.empty() && o.scene != name) return;
   using X = typename S::state_type;
-  const auto ref = study::long_double_reference(s, x0, T);
+  const auto ref = study::long_double_reference(s, x0, T, 1e-18L, 1e-17L, reference);
   std::cout << "\n## " << name << ": " << S::n_v << " degrees of freedom, T = " << T << " s\n"
-            << "reference: fehlberg78 in long double at 1e-18 (" << ref.rhs_evals
+            << "reference: " << (reference == study::reference_stepper::dopri5 ? "dopri5" : "fehlberg78")
+            << " in long double at 1e-18 (" << ref.rhs_evals
             << " evaluations for two solves), its error estimate " << std::setprecision(2) << ref.error_estimate
             << "\n";
   refs << name << ' ' << T;
@@ -224,7 +227,8 @@ int main(int argc, char** argv) {
       o.reference_out = argv[++i];
     else {
       std::cerr << "usage: work_precision [--quick] [--csv FILE] [--scene NAME] [--reference-out FILE]\n"
-                   "scenes: robot_arm gantry_crane double_pendulum spatial_chain4 stiff_joint free_body fourbar legged\n";
+                   "scenes: robot_arm gantry_crane double_pendulum spatial_chain4 stiff_joint free_body fourbar legged\n"
+                   "        bouncing_ball box_slide legged_stand\n";
       return 2;
     }
   }
@@ -308,6 +312,37 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i < x0.size(); ++i) x0[i] += 0.3 * std::sin(1.3 * i + 0.4);
       normalize(legged, x0);
       study_scene("legged", legged, x0, 2.0, false, o, points, refs);
+    }
+    {
+      // Contact: a ball thrown onto the ground (models/ball.hpp: Hunt–Crossley
+      // at E = 1e7 Pa, about 3e6 N/m at rest, with Stribeck friction): it
+      // lands twice, skidding, and rolls. The contact scenes' references are
+      // dopri5's (study/work_precision.hpp: fehlberg78's error estimate can
+      // step over a landing).
+      const auto ball = models::ball_on_ground();
+      study_scene("bouncing_ball", ball, {0, 0.3, 0, 0, 0, 0, 1, 0.5, 0, 0, 0, 0, 5.0}, 1.0, false, o, points,
+                  refs, study::reference_stepper::dopri5);
+    }
+    {
+      // Contact: a box sliding on its face at 1 m/s, its eight corners'
+      // spheres against the ground, until friction stops it.
+      const contact_material m{.stiffness = 1e7, .dissipation = 0.5, .static_friction = 0.5, .dynamic_friction = 0.5};
+      const auto box = scene(
+          World<"world">{}, FreeMotion<"fly">{}, Body<"box">({.m = 2.0, .J = Vec3d(0.02, 0.04, 0.03).asDiagonal()}),
+          Contact<"box_ground", contact_shape::box, contact_shape::half_space>(
+              {.a = {.half_extents = {0.2, 0.1, 0.15}, .corner_radius = 0.01}, .b = {.n = {0, 1, 0}},
+               .material_a = m, .material_b = m, .transition_velocity = 1e-3}),
+          connect<"world.frame_b", "fly.frame_a">, connect<"fly.frame_b", "box.frame_a">,
+          connect<"fly.frame_b", "box_ground.frame_a">, connect<"world.frame_b", "box_ground.frame_b">);
+      study_scene("box_slide", box, {0, 0.0995, 0, 0, 0, 0, 1, 1.0, 0, 0, 0, 0, 0}, 0.5, false, o, points, refs,
+                  study::reference_stepper::dopri5);
+    }
+    {
+      // Contact: the quadruped (models/legged.hpp) dropped onto its feet in a
+      // crouch, standing under one PD law on its twelve joints.
+      const auto robot = models::legged<4, 3, true, true>({.transition_velocity = 0.03}, models::crouch_drive{});
+      study_scene("legged_stand", robot, models::crouched_state(robot), 1.0, false, o, points, refs,
+                  study::reference_stepper::dopri5);
     }
   }
 #ifdef FLANGE_PEER_MUJOCO
