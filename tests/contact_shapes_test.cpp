@@ -14,7 +14,7 @@
 #include <numbers>
 #include <vector>
 
-#include "simbody/contact_scenes.hpp"
+#include "simbody/free_body_rows.hpp"
 
 using namespace flange;
 namespace cs = contact_scenes;
@@ -87,38 +87,22 @@ std::array<double, 8> corner_depths(const Sol& sol) {
 #ifdef FLANGE_SIMBODY_CONTACT
 TEST_CASE("a box thrown onto the ground follows Simbody's HuntCrossleyForce on its corners") {
   // contact_reference.cpp wrote the ball's trajectory, then the box's.
-  std::ifstream in(FLANGE_SIMBODY_CONTACT);
-  REQUIRE(in);
-  std::vector<std::array<double, 14>> rows;
-  for (std::array<double, 14> r; in >> r[0];) {
-    for (int i = 1; i < 14; ++i) in >> r[i];
-    rows.push_back(r);
-  }
-  REQUIRE(rows.size() == 2 * (cs::samples + 1));
-  rows.erase(rows.begin(), rows.begin() + cs::samples + 1);
+  const auto rows = cs::read_block(FLANGE_SIMBODY_CONTACT, 1);
+  REQUIRE(rows.size() == cs::samples + 1);
   const auto s = box(material(cs::dissipation, cs::static_friction, cs::dynamic_friction, cs::viscous_friction));
-  std::vector<double> times;
-  for (const auto& r : rows) times.push_back(r[0]);
   const Vec3d axis(cs::box_axis[0], cs::box_axis[1], cs::box_axis[2]);
   const X x0 = start({0, cs::box_y0, 0}, {cs::box_v0[0], cs::box_v0[1], cs::box_v0[2]}, cs::box_angle, axis,
                      {cs::box_w0[0], cs::box_w0[1], cs::box_w0[2]});
   for (int i = 0; i < 13; ++i) REQUIRE(std::abs(x0[i] - rows[0][i + 1]) < 1e-15);  // the same start
-  const auto tr = simulate(s, x0, times, {.tolerance = 1e-12});
-  double worst = 0, worst_residual = 0, lowest = 1;
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    const double sign = tr.x[k][6] * rows[k][7] < 0 ? -1 : 1;  // a quaternion and its negative are one rotation
-    for (int i = 0; i < 13; ++i)
-      worst = std::max(worst, std::abs(tr.x[k][i] - (i >= 3 && i < 7 ? sign : 1) * rows[k][i + 1]));
-    worst_residual = std::max(worst_residual, scaled_residual(s, recover(s, tr.t[k], tr.x[k])));
-    lowest = std::min(lowest, tr.x[k][1]);
-  }
-  INFO("largest difference from Simbody " << worst << ", residual " << worst_residual << ", lowest centre "
-                                           << lowest);
-  CHECK(worst < 1e-6);
-  CHECK(worst_residual < 1e-12);
-  CHECK(lowest < box_h.minCoeff());  // it did land
+  X last{};
+  const auto c = cs::compare(s, x0, rows, last);
+  INFO("largest difference from Simbody " << c.worst << ", residual " << c.worst_residual << ", lowest centre "
+                                           << c.lowest);
+  CHECK(c.worst < 1e-6);
+  CHECK(c.worst_residual < 1e-12);
+  CHECK(c.lowest < box_h.minCoeff());  // it did land
   // It ends on a face: four corners touching.
-  const auto end = recover(s, tr.t.back(), tr.x.back());
+  const auto end = recover(s, rows.back()[0], last);
   int touching = 0;
   for (double d : corner_depths(end)) touching += d > 0;
   CHECK(touching == 4);

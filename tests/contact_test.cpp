@@ -11,7 +11,7 @@
 #include <numbers>
 #include <vector>
 
-#include "simbody/contact_scenes.hpp"
+#include "simbody/free_body_rows.hpp"
 
 using namespace flange;
 namespace cs = contact_scenes;
@@ -54,36 +54,21 @@ X start(const Vec3d& r, const Vec3d& v, const Vec3d& w = Vec3d::Zero()) {
 #ifdef FLANGE_SIMBODY_CONTACT
 TEST_CASE("a ball thrown onto the ground follows Simbody's HuntCrossleyForce") {
   // contact_reference.cpp wrote Simbody's trajectories (the ball's first), in flange's state layout.
-  std::ifstream in(FLANGE_SIMBODY_CONTACT);
-  REQUIRE(in);
-  std::vector<std::array<double, 14>> rows;
-  for (std::array<double, 14> r; rows.size() < cs::samples + 1 && in >> r[0];) {  // the ball's block
-    for (int i = 1; i < 14; ++i) in >> r[i];
-    rows.push_back(r);
-  }
+  const auto rows = cs::read_block(FLANGE_SIMBODY_CONTACT, 0);
   REQUIRE(rows.size() == cs::samples + 1);
   const auto s = ball(material());
-  std::vector<double> times;
-  for (const auto& r : rows) times.push_back(r[0]);
-  const auto tr = simulate(s, start({0, cs::y0, 0}, {cs::vx0, cs::vy0, cs::vz0}, {cs::wx0, 0, cs::wz0}), times,
-                           {.tolerance = 1e-12});
-  double worst = 0, worst_residual = 0, lowest = 1;
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    const double sign = tr.x[k][6] * rows[k][7] < 0 ? -1 : 1;  // a quaternion and its negative are one rotation
-    for (int i = 0; i < 13; ++i)
-      worst = std::max(worst, std::abs(tr.x[k][i] - (i >= 3 && i < 7 ? sign : 1) * rows[k][i + 1]));
-    worst_residual = std::max(worst_residual, scaled_residual(s, recover(s, tr.t[k], tr.x[k])));
-    lowest = std::min(lowest, tr.x[k][1]);
-  }
-  INFO("largest difference from Simbody " << worst << ", residual " << worst_residual << ", lowest centre "
-                                           << lowest);
+  X last{};
+  const auto c =
+      cs::compare(s, start({0, cs::y0, 0}, {cs::vx0, cs::vy0, cs::vz0}, {cs::wx0, 0, cs::wz0}), rows, last);
+  INFO("largest difference from Simbody " << c.worst << ", residual " << c.worst_residual << ", lowest centre "
+                                           << c.lowest);
   // Both integrated at 1e-12 through impacts, sliding and rolling.
-  CHECK(worst < 1e-6);
-  CHECK(worst_residual < 1e-12);
-  CHECK(lowest < cs::radius);  // it did touch the ground
+  CHECK(c.worst < 1e-6);
+  CHECK(c.worst_residual < 1e-12);
+  CHECK(c.lowest < cs::radius);  // it did touch the ground
   // And it ends rolling on the ground: in contact, its contact point
   // slipping slower than the friction's transition speed.
-  const auto end = recover(s, tr.t.back(), tr.x.back());
+  const auto end = recover(s, rows.back()[0], last);
   CHECK(end.internal<"ball_ground", "δ">() > 0);
   CHECK(end.internal<"ball_ground", "v_s">() < cs::transition_velocity);
 }
