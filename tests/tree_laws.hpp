@@ -87,7 +87,7 @@ std::pair<double, double> power_balance(const S& s, double t, const State& x) {
     } else if constexpr (C::kind == role::joint) {
       const double* q = sol.q.data() + S::tree.q_offset[I];
       const double* v = sol.v.data() + S::tree.v_offset[I];
-      const joint_state<double> js{sol.q.data(), sol.v.data(), S::n_q};
+      const auto js = state_view<S>(sol.q.data(), sol.v.data());  // drives read joints by name
       if constexpr (requires { c.generalized_force(t, js, q, v, static_cast<double*>(nullptr)); }) {
         std::array<double, C::nv> tau;
         c.generalized_force(t, js, q, v, tau.data());
