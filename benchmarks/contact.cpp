@@ -6,10 +6,15 @@
 // pair) and the quadruped of models/legged.hpp on its four feet.
 //
 //   build/benchmarks/contact [calls per repetition, default 200000]
+//   build/benchmarks/contact --count <ball|legged> <with|without> <n>
+//       n derivatives of one scene and nothing else: under
+//       valgrind --tool=callgrind, the instructions of 2000 calls less those
+//       of 1000, over 1000, are one derivative's (docs/contact.md's table)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include <flange/flange.hpp>
@@ -52,14 +57,25 @@ void compare(const char* name, int pairs, const With& with, const typename With:
 }  // namespace
 
 int main(int argc, char** argv) {
-  const long n = argc > 1 ? std::atol(argv[1]) : 200000;
+  // --count <ball|legged> <with|without> <n>: only n derivatives of one
+  // scene, for callgrind's instruction counts (the difference of two n).
+  const bool count = argc == 5 && std::string(argv[1]) == "--count";
+  const std::string which = count ? argv[2] : "", variant = count ? argv[3] : "";
+  const long n = count ? std::atol(argv[4]) : argc > 1 ? std::atol(argv[1]) : 200000;
+  auto run = [&](const char* name, int pairs, const auto& with, const auto& xw, const auto& without, const auto& xo,
+                 long calls) {
+    if (!count) return compare(name, pairs, with, xw, without, xo, calls);
+    if (which != name) return;
+    volatile double sink = variant == "with" ? ns_per_call(with, xw, n) : ns_per_call(without, xo, n);
+    (void)sink;
+  };
   {
     const auto with = models::ball_on_ground();
     const auto without = scene(World<"world">{}, FreeMotion<"fly">{}, Body<"ball">({.m = 1.0, .J = Mat3d::Identity() * 0.004}),
                                connect<"world.frame_b", "fly.frame_a">, connect<"fly.frame_b", "ball.frame_a">);
     // 1 mm into the ground, sliding and spinning.
     decltype(with)::state_type x{0, 0.099, 0, 0, 0, 0, 1, 0.5, -0.1, 0.2, 1.0, 2.0, -3.0};
-    compare("ball", 1, with, x, without, x, n);
+    run("ball", 1, with, x, without, x, n);
   }
   {
     const auto with = models::legged<4, 3, true>();
@@ -70,6 +86,6 @@ int main(int argc, char** argv) {
     x[1] = -0.002;
     x[6] = 1;
     for (int i = 19; i < int(x.size()); ++i) x[i] = 0.01 * (i % 5) - 0.02;
-    compare("legged", 4, with, x, without, x, n / 4);
+    run("legged", 4, with, x, without, x, n / 4);
   }
 }
