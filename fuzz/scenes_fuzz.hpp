@@ -222,9 +222,10 @@ void run(bytes& b, bool tree, Make make) {
   }
 }
 
-/// The six scenes, in three translation units so that they build in parallel.
+/// The eight scenes, in four translation units so that they build in parallel.
 void fuzz_trees(bytes& b, int which);
 void fuzz_chain_and_crane(bytes& b, int which);
 void fuzz_loops(bytes& b, int which);
+void fuzz_contacts(bytes& b, int which);
 
 }  // namespace flange::fuzz
