@@ -10,6 +10,7 @@
 #include "flange/forces/contact.hpp"
 #include "flange/joints/free_motion.hpp"
 #include "flange/scene/scene.hpp"
+#include "flange/simulate/system.hpp"
 
 namespace flange::models {
 
