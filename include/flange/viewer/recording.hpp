@@ -126,18 +126,7 @@ class recording {
   }
   [[nodiscard]] std::size_t samples() const { return times_.size(); }
   /// The scene's contact points (an arrow each at every sample).
-  static constexpr int contact_points() {
-    int n = 0;
-    [&]<int... C>(std::integer_sequence<int, C...>) {
-      (
-          [&] {
-            using Comp = typename S::template component_type<C>;
-            if constexpr (requires { Comp::pairs_two_bodies; }) n += Comp::points;
-          }(),
-          ...);
-    }(std::make_integer_sequence<int, S::n_components>{});
-    return n;
-  }
+  static constexpr int contact_points() { return contact_points_from(std::make_integer_sequence<int, S::n_components>{}); }
 
   /// Writes the page: the recording as JSON, the player, and three.js
   /// (read from three_js_path and inlined, so the page works offline).
@@ -165,6 +154,17 @@ class recording {
     std::function<double(const solution&)> f;
     std::vector<double> values;
   };
+
+  /// A component's contact points: a Contact's, else none.
+  template <class C>
+  static constexpr int points_of() {
+    if constexpr (requires { C::pairs_two_bodies; }) return C::points;
+    else return 0;
+  }
+  template <int... C>
+  static constexpr int contact_points_from(std::integer_sequence<int, C...>) {
+    return (0 + ... + points_of<typename S::template component_type<C>>());
+  }
 
   // A Contact's shape at its frame: "shape" items the player draws pale.
   template <class Item>
