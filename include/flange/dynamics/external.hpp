@@ -137,7 +137,7 @@ FLANGE_INLINE void gather_external(const S& scene, const T& t, const state_of<T>
     if (F.force[L]) f_ext[L].setZero();
   }
   if constexpr (has_motion_forces<S>()) {
-    const auto lk = link_poses<S>(pose_motions, x.v_);
+    const auto lk = link_poses<S, T, F.torque>(pose_motions, x.v_);
     [&]<int... C>(std::integer_sequence<int, C...>) FLANGE_INLINE_LAMBDA {
       (
           [&]() FLANGE_INLINE_LAMBDA {

@@ -78,8 +78,17 @@ struct link_pose {
   Vec3<T> w;  ///< ω, link coordinates
 };
 
-/// The pose pass: R, r, ṙ and ω of every link (link 0 is the World).
-template <class S, class T, class Motions>
+/// Every link of the tree (for link_poses' Keep).
+template <class S>
+inline constexpr std::array<bool, S::tree.n_links> all_links = [] {
+  std::array<bool, S::tree.n_links> k{};
+  k.fill(true);
+  return k;
+}();
+
+/// The pose pass: R, r, ṙ and ω of every link (link 0 is the World); only
+/// the links Keep marks are written out (the others pass theirs down).
+template <class S, class T, class Motions, std::array<bool, S::tree.n_links> Keep>
 struct pose_pass : down_only_walk {
   const Motions& motions;
   const T* v;
@@ -87,35 +96,37 @@ struct pose_pass : down_only_walk {
 
   template <int L>
   nothing at(const link_pose<T>& d) {
-    out[L] = d;
+    if constexpr (Keep[L]) out[L] = d;
     return {};
   }
   template <int L, int C>
   link_pose<T> down(const link_pose<T>& P) {
     const auto& m = std::get<C - 1>(motions);
     const T* vc = v + link_info<S, C>::v;
-    const Vec3<T> p = m.p.dense();
     link_pose<T> c;
     if constexpr (L == 0) {  // on the World: R_P = 1, r_P = ṙ_P = ω_P = 0
       c.R = to_matrix<T>(m.E());
-      c.r = p;
+      c.r = m.p.dense();
       c.v = m.pd(vc).dense();
       c.w = m.w(vc).dense();
     } else {
-      c.R = to_matrix<T>(m.E()) * P.R;
-      c.r = P.r + P.R.transpose() * p;
-      c.v = P.v + P.R.transpose() * (P.w.cross(p) + m.pd(vc).dense());
+      // Each product in its sparse form (a revolute about a coordinate axis
+      // turns two rows of R; an offset along one axis reads one column).
+      for (int j = 0; j < 3; ++j) c.R.col(j) = rot(m.E(), to_svec(Vec3<T>(P.R.col(j)))).dense();
+      c.r = P.r + rot_t(P.R, m.p).dense();
+      c.v = P.v + rot_t(P.R, cross(to_svec(P.w), m.p) + m.pd(vc)).dense();
       c.w = rot(m.E(), to_svec(P.w)).dense() + m.w(vc).dense();
     }
     return c;
   }
 };
 
-/// World poses and velocities of every link at (q, v); motions in the spatial algebra.
-template <class S, class T, class Motions>
+/// World poses and velocities of the links Keep marks (the others are left
+/// unset) at (q, v); motions in the spatial algebra.
+template <class S, class T, std::array<bool, S::tree.n_links> Keep = all_links<S>, class Motions>
 FLANGE_INLINE std::array<link_pose<T>, S::tree.n_links> link_poses(const Motions& motions, const T* v) {
   std::array<link_pose<T>, S::tree.n_links> out;
-  pose_pass<S, T, Motions> ctx{{}, motions, v, out};
+  pose_pass<S, T, Motions, Keep> ctx{{}, motions, v, out};
   walk<S, 0>(ctx, link_pose<T>{Mat3<T>::Identity(), Vec3<T>::Zero(), Vec3<T>::Zero(), Vec3<T>::Zero()});
   return out;
 }

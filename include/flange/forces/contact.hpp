@@ -167,7 +167,7 @@ class Contact {
   /// The contact at point i for the two frames' motion (frame_kinematics: R
   /// turns world into the frame, w in frame coordinates).
   template <class T>
-  [[nodiscard]] detail::contact_point<T> evaluate(int i, const frame_kinematics<T>& a,
+  [[nodiscard]] FLANGE_INLINE detail::contact_point<T> evaluate(int i, const frame_kinematics<T>& a,
                                                   const frame_kinematics<T>& b) const {
     using std::sqrt;
     detail::contact_point<T> cp;
@@ -192,11 +192,16 @@ class Contact {
     cp.force = cp.fn * N;
     const T vs2 = vt.squaredNorm();
     if (vs2 > T(0)) {
+      // f_t/v_s, the factor of the slip vector, without a division by v_s
+      // below v_t (the ramp is v_s/v_t there) and with the two divisions
+      // independent of each other above it.
       cp.vs = sqrt(vs2);
-      const T r = cp.vs * T(inv_vt_);
-      const T ramp = r < T(1) ? r : T(1);
-      cp.ft = cp.fn * (ramp * (T(mu_d_) + T(2 * (mu_s_ - mu_d_)) / (T(1) + r * r)) + T(mu_v_) * cp.vs);
-      cp.force += (cp.ft / cp.vs) * vt;
+      const T r2 = vs2 * T(inv_vt_ * inv_vt_);
+      const T mu = T(mu_d_) + T(2 * (mu_s_ - mu_d_)) / (T(1) + r2);
+      const T per_vs = r2 < T(1) ? mu * T(inv_vt_) : mu / cp.vs;  // ramp·μ(v_s)/v_s
+      const T g = cp.fn * (per_vs + T(mu_v_));
+      cp.ft = g * cp.vs;
+      cp.force += g * vt;
     }
     return cp;
   }
@@ -212,7 +217,7 @@ class Contact {
   /// What the element exerts on the rest of the scene at each of its frames:
   /// force and torque (about the frame's origin), world coordinates.
   template <class T>
-  void wrenches(const T&, const state_of<T> auto&, const frame_kinematics<T>* k, wrench<T>* on) const {
+  FLANGE_INLINE void wrenches(const T&, const state_of<T> auto&, const frame_kinematics<T>* k, wrench<T>* on) const {
     Vec3<T> F = Vec3<T>::Zero(), Ma = Vec3<T>::Zero();
     for (int i = 0; i < M; ++i) {
       const auto cp = evaluate(i, k[0], k[1]);

@@ -33,6 +33,7 @@
 #include "flange/components/body_shape.hpp"
 #include "flange/core/component.hpp"
 #include "flange/core/frame_kinematics.hpp"
+#include "flange/detail/inline.hpp"
 
 namespace flange {
 
@@ -137,7 +138,7 @@ inline void check_shape(std::string_view name, std::string_view which, const con
 
 /// Overlap of a sphere (centre c, radius r, world) with the half-space s at frame b.
 template <class T>
-contact_overlap<T> sphere_half_space(const Vec3<T>& c, double r, const contact_shape::half_space& s,
+FLANGE_INLINE contact_overlap<T> sphere_half_space(const Vec3<T>& c, double r, const contact_shape::half_space& s,
                                      const frame_kinematics<T>& b) {
   contact_overlap<T> o;
   o.N = b.R.transpose() * s.n.template cast<T>();
@@ -165,7 +166,7 @@ struct contact_pair<contact_shape::sphere, contact_shape::half_space> {
   [[nodiscard]] double radius(int) const { return a.radius; }
   [[nodiscard]] double size() const { return a.radius; }
   template <class T>
-  [[nodiscard]] contact_overlap<T> overlap(int, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
+  [[nodiscard]] FLANGE_INLINE contact_overlap<T> overlap(int, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
     return sphere_half_space(ka.r, a.radius, b, kb);
   }
 };
@@ -178,7 +179,7 @@ struct contact_pair<contact_shape::sphere, contact_shape::sphere> {
   [[nodiscard]] double radius(int) const { return a.radius * b.radius / (a.radius + b.radius); }
   [[nodiscard]] double size() const { return std::min(a.radius, b.radius); }
   template <class T>
-  [[nodiscard]] contact_overlap<T> overlap(int, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
+  [[nodiscard]] FLANGE_INLINE contact_overlap<T> overlap(int, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
     using std::sqrt;
     contact_overlap<T> o;
     const Vec3<T> d = ka.r - kb.r;
@@ -200,7 +201,7 @@ struct contact_pair<contact_shape::capsule, contact_shape::half_space> {
   [[nodiscard]] double radius(int) const { return a.radius; }
   [[nodiscard]] double size() const { return a.radius; }
   template <class T>
-  [[nodiscard]] contact_overlap<T> overlap(int i, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
+  [[nodiscard]] FLANGE_INLINE contact_overlap<T> overlap(int i, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
     const Vec3d end = a.center + (i == 0 ? -a.half_length : a.half_length) * a.axis;
     return sphere_half_space(Vec3<T>(ka.r + ka.R.transpose() * end.template cast<T>()), a.radius, b, kb);
   }
@@ -222,7 +223,7 @@ struct contact_pair<contact_shape::box, contact_shape::half_space> {
   [[nodiscard]] double radius(int) const { return a.corner_radius; }
   [[nodiscard]] double size() const { return a.half_extents.minCoeff(); }
   template <class T>
-  [[nodiscard]] contact_overlap<T> overlap(int i, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
+  [[nodiscard]] FLANGE_INLINE contact_overlap<T> overlap(int i, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
     return sphere_half_space(Vec3<T>(ka.r + ka.R.transpose() * corner(i).template cast<T>()), a.corner_radius, b, kb);
   }
 };
@@ -236,7 +237,7 @@ struct contact_pair<contact_shape::sphere, contact_shape::box> {
   [[nodiscard]] double radius(int) const { return a.radius; }
   [[nodiscard]] double size() const { return std::min(a.radius, b.half_extents.minCoeff()); }
   template <class T>
-  [[nodiscard]] contact_overlap<T> overlap(int, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
+  [[nodiscard]] FLANGE_INLINE contact_overlap<T> overlap(int, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
     using std::abs;
     using std::sqrt;
     contact_overlap<T> o;
