@@ -9,11 +9,14 @@
 # (PARAMETERS: a struct adapted to Boost.Hana, include/flange/python/parameters.hpp).
 # SCENE is the header declaring the factory. The module and the `flange`
 # package it imports go to OUTPUT_DIRECTORY (default:
-# ${CMAKE_CURRENT_BINARY_DIR}/python), so that
+# ${CMAKE_CURRENT_BINARY_DIR}/python), with a launcher, <dir>/python3: the
+# interpreter the module is built for (flange_find_python's), with <dir> on
+# its PYTHONPATH, so that
 #
-#   PYTHONPATH=<dir> python3 -c "import <module>"
+#   <dir>/python3 -c "import <module>"
 #
-# works. TIMING adds _time_derivative and _time_simulate, the C++ loops the
+# works whatever `python3` on PATH is (a pyenv or virtualenv interpreter
+# without numpy, or of another Python version, cannot import the module). TIMING adds _time_derivative and _time_simulate, the C++ loops the
 # Python benchmark compares with.
 #
 #   flange_urdf_python_module(NAME <module> URDF <file> [FLOATING_BASE] [OUTPUT_DIRECTORY <dir>]
@@ -63,6 +66,29 @@ macro(flange_find_python)
   find_package(Python3 QUIET COMPONENTS Interpreter Development.Module)
 endmacro()
 
+# <dir>/python3: the modules' interpreter with <dir> first on PYTHONPATH.
+function(_flange_python_launcher dir)
+  set(python "${Python3_EXECUTABLE}")
+  if(NOT python)
+    set(python "${PYTHON_EXECUTABLE}")
+  endif()
+  if(NOT python)
+    set(python python3)
+  endif()
+  file(MAKE_DIRECTORY "${dir}")
+  file(WRITE "${dir}/python3.in"
+"#!/bin/sh
+# The Python the flange modules in this directory are built for, with this
+# directory on its path (written by flange_add_python_module).
+export PYTHONPATH=\"${dir}\${PYTHONPATH:+:\$PYTHONPATH}\"
+exec \"${python}\" \"\$@\"
+")
+  file(COPY_FILE "${dir}/python3.in" "${dir}/python3" ONLY_IF_DIFFERENT)
+  file(REMOVE "${dir}/python3.in")
+  file(CHMOD "${dir}/python3" PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE
+                                          WORLD_READ WORLD_EXECUTE)
+endfunction()
+
 function(flange_add_python_module)
   cmake_parse_arguments(FP "TIMING" "NAME;SCENE;FACTORY;PARAMETERS;OUTPUT_DIRECTORY" "" ${ARGN})
   set(target ${FP_NAME}_python)
@@ -111,6 +137,9 @@ ${timing_bind}}
   # NO_EXTRAS: no link-time optimisation (it would double the build time)
   pybind11_add_module(${target} MODULE NO_EXTRAS "${src}")
   target_link_libraries(${target} PRIVATE flange::flange)
+  if(Python3_EXECUTABLE)
+    target_compile_definitions(${target} PRIVATE "FLANGE_PYTHON_BUILT_FOR=\"${Python3_EXECUTABLE}\"")
+  endif()
   if(TARGET TBB::tbb)
     target_link_libraries(${target} PRIVATE TBB::tbb)
     target_compile_definitions(${target} PRIVATE FLANGE_PYTHON_TBB)
@@ -121,6 +150,7 @@ ${timing_bind}}
   string(MD5 dir_id "${FP_OUTPUT_DIRECTORY}")
   set(package flange_python_package_${dir_id})
   if(NOT TARGET ${package})
+    _flange_python_launcher("${FP_OUTPUT_DIRECTORY}")
     add_custom_target(${package}
       COMMAND ${CMAKE_COMMAND} -E make_directory "${FP_OUTPUT_DIRECTORY}/flange"
       COMMAND ${CMAKE_COMMAND} -E copy_if_different "${_FLANGE_PYTHON_PACKAGE_DIR}/__init__.py"

@@ -5,7 +5,7 @@ the README show from Python stays true. Lines keep their numbers: an error
 names the document's line. matplotlib draws off-screen (Agg); plt.show()
 returns at once.
 
-    PYTHONPATH=build/python tools/doc_python.py docs/python.md
+    build/python/python3 tools/doc_python.py docs/python.md
 """
 
 import os

@@ -2,7 +2,7 @@
 (examples/spatial_arm.hpp, module `spatial_arm`, built with the C++ timing
 loops of include/flange/python/timing.hpp), timed in one process.
 
-    PYTHONPATH=build/python python3 benchmarks/python/bench_python.py
+    build/python/python3 benchmarks/python/bench_python.py
 
 Each line: python <what> python_ns=<x> cpp_ns=<y> ratio=<x/y>, medians.
   derivative_call  one derivative(t, x, out) from Python against one C++ call:

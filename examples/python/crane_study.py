@@ -3,7 +3,7 @@ cart controller's gain kp and the load's mass, run by flange's C++ ensemble
 engine (on every core where oneTBB is installed), then the swing and the
 settling time worked out with numpy and plotted with matplotlib.
 
-    PYTHONPATH=build/python python3 examples/python/crane_study.py [--png out.png]
+    build/python/python3 examples/python/crane_study.py [--png out.png]
 
 The scene is examples/python/crane_scene.hpp (flange/models/controlled_crane.hpp),
 compiled once into the module `crane`; every case is a run-time value.

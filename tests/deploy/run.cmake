@@ -17,7 +17,8 @@ execute_process(COMMAND ${WORK}/consumer/c COMMAND_ERROR_IS_FATAL ANY)
 if(PYTHON)
   # the module, with the installed `flange` package beside it: at φ = 0 the
   # pendulum's rod is level, so φ̈ = −g/L = −9.81 1/s²
-  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${WORK}/consumer/python ${PYTHON} -c
+  # run by the launcher the installed flange_add_python_module writes beside it
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=PYTHONPATH ${WORK}/consumer/python/python3 -c
                           "import deployed, flange; d = deployed.derivative(0.0, deployed.initial_state()); assert abs(d[1] + 9.81) < 1e-12, d; print('python module from the installed flange:', d)"
                   COMMAND_ERROR_IS_FATAL ANY)
 endif()

@@ -116,3 +116,25 @@ def test_bad_recorders():
         crane.ensemble({"m_load": [1.0]}, t, x0=X, recorders={"a": ("crossing", "rail.q", 0.0, 2)})
     with pytest.raises(ValueError, match="is a tuple"):
         crane.ensemble({"m_load": [1.0]}, t, x0=X, recorders={"a": "max"})
+
+
+def test_a_python_without_numpy_is_told_which_python_to_run():
+    """A module imported by an interpreter without numpy (a pyenv or
+    virtualenv python3 first on PATH) says so, and which Python it is for;
+    the launcher beside the modules runs that one with no PATH at all."""
+    import os
+    import subprocess
+    import sys
+
+    here = os.path.dirname(crane.__file__)
+    hide_numpy = "import sys; sys.modules['numpy'] = None; import crane"
+    r = subprocess.run([sys.executable, "-c", hide_numpy], capture_output=True, text=True)
+    assert r.returncode != 0
+    assert "flange scene modules need numpy, which this Python (" in r.stderr
+    assert "run them with the Python they were built for" in r.stderr
+    assert "the python3 beside the module" in r.stderr
+    launcher = os.path.join(here, "python3")
+    r = subprocess.run([launcher, "-c", "import crane; print(crane.joints)"], capture_output=True, text=True,
+                       env={})
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() == str(crane.joints)

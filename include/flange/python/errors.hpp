@@ -12,6 +12,8 @@
 
 #include <algorithm>
 #include <exception>
+#include <string>
+#include <string_view>
 
 #include "flange/errors.hpp"
 #include "flange/python/parameters.hpp"
@@ -34,6 +36,18 @@ inline void load_package() {
   try {
     f = py::module_::import("flange");
   } catch (py::error_already_set& e) {
+    if (std::string_view(e.what()).find("numpy") != std::string_view::npos) {
+      // The package is there; this interpreter has no numpy (often a pyenv
+      // or virtualenv python3 first on PATH, not the one the module is for).
+      const auto here = py::str(py::module_::import("sys").attr("executable")).cast<std::string>();
+      throw py::import_error(concat("flange scene modules need numpy, which this Python (", here,
+                                    ") cannot import: run them with the Python they were built for",
+#ifdef FLANGE_PYTHON_BUILT_FOR
+                                    " (", FLANGE_PYTHON_BUILT_FOR, ")",
+#endif
+                                    " (the python3 beside the module runs it with the module's directory on its "
+                                    "path), or install numpy for this one"));
+    }
     throw py::import_error(concat("a flange scene module needs the `flange` Python package beside it ",
                                   "(flange_add_python_module puts it there): ", e.what()));
   }
