@@ -51,6 +51,7 @@ constexpr bool has_motion_forces() {
 }
 
 /// Which links some element acts on: with a torque, and with a force.
+/// (loaded_links: the first, as link_poses' Keep.)
 template <class S>
 struct load_flags {
   static constexpr int NL = S::tree.n_links;
@@ -76,6 +77,12 @@ struct load_flags {
     t.torque[0] = t.force[0] = false;  // the World takes what it is given
     return t;
   }();
+};
+
+/// The links some element acts on (link_poses' Keep).
+template <class S>
+struct loaded_links {
+  static constexpr auto value = load_flags<S>::value.torque;
 };
 
 template <class S, class T>
@@ -137,7 +144,7 @@ FLANGE_INLINE void gather_external(const S& scene, const T& t, const state_of<T>
     if (F.force[L]) f_ext[L].setZero();
   }
   if constexpr (has_motion_forces<S>()) {
-    const auto lk = link_poses<S, T, F.torque>(pose_motions, x.v_);
+    const auto lk = link_poses<S, T, loaded_links<S>>(pose_motions, x.v_);
     [&]<int... C>(std::integer_sequence<int, C...>) FLANGE_INLINE_LAMBDA {
       (
           [&]() FLANGE_INLINE_LAMBDA {

@@ -78,17 +78,22 @@ struct link_pose {
   Vec3<T> w;  ///< ω, link coordinates
 };
 
-/// Every link of the tree (for link_poses' Keep).
+/// Every link of the tree: link_poses' Keep, a type whose value marks the
+/// links to write out. (A type: with the array itself as the template
+/// argument, the g++ 12 build of tests/hard_mass_ratio_test.cpp wrote out
+/// other links than the ones marked.)
 template <class S>
-inline constexpr std::array<bool, S::tree.n_links> all_links = [] {
-  std::array<bool, S::tree.n_links> k{};
-  k.fill(true);
-  return k;
-}();
+struct all_links {
+  static constexpr std::array<bool, S::tree.n_links> value = [] {
+    std::array<bool, S::tree.n_links> k{};
+    k.fill(true);
+    return k;
+  }();
+};
 
 /// The pose pass: R, r, ṙ and ω of every link (link 0 is the World); only
-/// the links Keep marks are written out (the others pass theirs down).
-template <class S, class T, class Motions, std::array<bool, S::tree.n_links> Keep>
+/// the links Keep::value marks are written out (the others pass theirs down).
+template <class S, class T, class Motions, class Keep>
 struct pose_pass : down_only_walk {
   const Motions& motions;
   const T* v;
@@ -96,7 +101,7 @@ struct pose_pass : down_only_walk {
 
   template <int L>
   nothing at(const link_pose<T>& d) {
-    if constexpr (Keep[L]) out[L] = d;
+    if constexpr (Keep::value[L]) out[L] = d;
     return {};
   }
   template <int L, int C>
@@ -121,9 +126,9 @@ struct pose_pass : down_only_walk {
   }
 };
 
-/// World poses and velocities of the links Keep marks (the others are left
-/// unset) at (q, v); motions in the spatial algebra.
-template <class S, class T, std::array<bool, S::tree.n_links> Keep = all_links<S>, class Motions>
+/// World poses and velocities of the links Keep::value marks (the others are
+/// left unset) at (q, v); motions in the spatial algebra.
+template <class S, class T, class Keep = all_links<S>, class Motions>
 FLANGE_INLINE std::array<link_pose<T>, S::tree.n_links> link_poses(const Motions& motions, const T* v) {
   std::array<link_pose<T>, S::tree.n_links> out;
   pose_pass<S, T, Motions, Keep> ctx{{}, motions, v, out};
