@@ -1,21 +1,12 @@
 // The scenes fuzz target's contact scenes (fuzz/scenes_fuzz.hpp): the shapes
 // of models/shapes.hpp (a capsule and a box on the ground, a ball on the
 // box) with their sizes, materials and the ground's friction from the
-// bytes, and the quadruped of models/legged.hpp on sphere feet and a box
-// belly under PD drives of fuzzed gains.
-#include <flange/models/legged.hpp>
+// bytes; and the quadruped (scenes_legged.cpp).
 #include <flange/models/shapes.hpp>
 
 #include "scenes_fuzz.hpp"
 
 namespace flange::fuzz {
-
-namespace {
-contact_material material(bytes& b) {
-  return {.stiffness = b.num(1e4, 1e7), .dissipation = b.num(0, 1), .static_friction = b.num(0, 1),
-          .dynamic_friction = b.num(0, 1), .viscous_friction = b.num(0, 0.2)};
-}
-}  // namespace
 
 void fuzz_contacts(bytes& b, int which) {
   if (which == 0) {
@@ -37,17 +28,7 @@ void fuzz_contacts(bytes& b, int which) {
       return models::shapes_on_ground(p);
     });
   } else {
-    run(b, true, [&] {
-      models::legged_params p;
-      p.trunk_mass = b.num(2, 20);
-      p.link_mass = b.num(0.1, 1);
-      p.foot_radius = b.num(0.01, 0.05);
-      p.foot = material(b);
-      p.ground = material(b);
-      p.transition_velocity = b.num(1e-3, 0.1);
-      return models::legged<4, 3, true, true>(
-          p, models::crouch_drive{.kp = b.num(0, 2000), .kd = b.num(0, 100), .knee = b.num(-0.5, 0.5)});
-    });
+    fuzz_legged_contact(b);  // its own unit (scenes_legged.cpp): the two compile side by side
   }
 }
 

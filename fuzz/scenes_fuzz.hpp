@@ -222,10 +222,17 @@ void run(bytes& b, bool tree, Make make) {
   }
 }
 
-/// The eight scenes, in four translation units so that they build in parallel.
+/// A contact surface's material from the bytes.
+inline contact_material material(bytes& b) {
+  return {.stiffness = b.num(1e4, 1e7), .dissipation = b.num(0, 1), .static_friction = b.num(0, 1),
+          .dynamic_friction = b.num(0, 1), .viscous_friction = b.num(0, 0.2)};
+}
+
+/// The eight scenes, in five translation units so that they build in parallel.
 void fuzz_trees(bytes& b, int which);
 void fuzz_chain_and_crane(bytes& b, int which);
 void fuzz_loops(bytes& b, int which);
 void fuzz_contacts(bytes& b, int which);
+void fuzz_legged_contact(bytes& b);
 
 }  // namespace flange::fuzz
