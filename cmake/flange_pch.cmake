@@ -22,4 +22,12 @@ function(flange_precompile_headers target)
     set(FP_HEADERS <flange/flange.hpp>)
   endif()
   target_precompile_headers(${target} PRIVATE ${FP_HEADERS})
+  # GCC (up to 12) does not keep the "#pragma GCC diagnostic" state of the
+  # precompiled headers: Eigen's silencing of -Wignored-attributes (an
+  # attribute of its SIMD packet types, harmless) is lost, and every unit
+  # that instantiates Eigen warns, though the same unit without the
+  # precompiled header is clean.
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    target_compile_options(${target} PRIVATE -Wno-ignored-attributes)
+  endif()
 endfunction()

@@ -6,6 +6,7 @@
 // the articulated-body algorithm, which never forms M, and against a dense
 // solve of M(q) at the state; the exact Jacobian through the folded inverse;
 // and a singular constant M still reported at the evaluation, naming its joint.
+#include <Eigen/Cholesky>
 #include <catch2/catch.hpp>
 
 #include <random>

@@ -366,7 +366,7 @@ TEST_CASE("box and capsule parameters are checked at construction") {
   using Capsule = Contact<"rod_ground", contact_shape::capsule, contact_shape::half_space>;
   using OnBox = Contact<"on_box", contact_shape::sphere, contact_shape::box>;
   CHECK_THROWS_WITH(BoxGround({.a = {.half_extents = {0.5, 0, 0.5}}, .material_a = m, .material_b = m}),
-                    Catch::Contains("Contact \"box_ground\": a.half_extents = [0.5   0 0.5] must be positive"));
+                    Catch::Contains("Contact \"box_ground\": a.half_extents = [0.5 0 0.5] must be positive"));
   CHECK_THROWS_WITH(BoxGround({.a = {.half_extents = {0.5, 0.25, 0.5}, .corner_radius = 0.375}, .material_a = m,
                                .material_b = m}),
                     Catch::Contains("a.corner_radius = 0.375 exceeds the smallest half extent 0.25"));

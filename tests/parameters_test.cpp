@@ -1,7 +1,14 @@
 // Bad parameters throw at construction, naming the component and the value;
 // a singularity found during simulation throws with the time and the state.
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
+#include <random>
+#include <string>
+#include <string_view>
 
+#include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <flange/flange.hpp>
 
@@ -25,6 +32,57 @@ TEST_CASE("a body refuses unphysical mass and inertia") {
   CHECK_THROWS_WITH(Body<"mass">({.m = 1.0, .r_cm = {0.1, 0, 0}}), Contains("cm::offset"));
   CHECK_NOTHROW(Body<"mass", cm::offset>({.m = 1.0, .r_cm = {0.1, 0, 0}}));
   CHECK_NOTHROW(Body<"point">({.m = 1.0}));  // a point mass has J = 0
+}
+
+TEST_CASE("the inertia check decides by the principal moments to 1e-12 of the largest entry") {
+  // Tensors R·diag(a, b, c)·R' of known principal moments, turned by random
+  // rotations: accepted exactly when the moments are non-negative and obey
+  // the triangle inequality, the boundary cases (a lamina, c = a + b; a rod,
+  // one moment zero) included, whatever the turn.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto turn = [&] {
+    const Vec3d axis(u(rng), u(rng), u(rng));
+    return Eigen::AngleAxisd(3 * u(rng), axis.normalized()).toRotationMatrix().eval();
+  };
+  struct moments {
+    double a, b, c;
+    bool physical;
+  };
+  const moments cases[] = {{1, 2, 3, true},     {1, 1, 2, true},         {0.3, 0.7, 1.0, true},
+                           {0, 1, 1, true},     {2, 2, 2, true},         {1, 2, 3 + 1e-9, false},
+                           {1, 1, 2.001, false}, {-1e-6, 1, 1, false},   {0, 0, 0, true},
+                           {5e-7, 1, 1, true},  {1e3, 1e3, 2e3, true},   {1e-3, 2e-3, 3.1e-3, false}};
+  for (const auto& m : cases)
+    for (int k = 0; k < 20; ++k) {
+      const Mat3d R = turn();
+      const Mat3d J = R * Vec3d(m.a, m.b, m.c).asDiagonal() * R.transpose();
+      const Mat3d Js = (J + J.transpose()) / 2;  // symmetric to the bit, as a user's tensor is
+      INFO("moments " << m.a << " " << m.b << " " << m.c << ", turn " << k);
+      if (m.physical) {
+        CHECK_NOTHROW(Body<"b">({.m = 1.0, .J = Js}));
+      } else {
+        CHECK_THROWS_AS(Body<"b">({.m = 1.0, .J = Js}), parameter_error);
+      }
+      // The moments the message gives: the closed form against the construction.
+      const Vec3d lam = detail::symmetric_eigenvalues(Js);
+      const double scale = std::max({std::abs(m.a), std::abs(m.b), std::abs(m.c), 1e-300});
+      std::array<double, 3> want{m.a, m.b, m.c};
+      std::sort(want.begin(), want.end());
+      for (int i = 0; i < 3; ++i) CHECK(std::abs(lam(i) - want[i]) <= 1e-14 * scale);
+    }
+}
+
+TEST_CASE("messages write numbers to 17 digits and vectors and matrices on one line") {
+  CHECK(detail::concat("x = ", 0.1, ", n = ", 42, ", c = ", 'c') == "x = 0.10000000000000001, n = 42, c = c");
+  CHECK(detail::concat(Vec3d(1, -2.5, 3).transpose()) == "1 -2.5 3");
+  CHECK(detail::concat(Vec3d(1, -2.5, 3)) == "1 -2.5 3");
+  Mat3d A;
+  A << 1, 2, 3, 4, 5, 6, 7, 8, 9.5;
+  CHECK(detail::concat("[", A, "]") == "[1 2 3; 4 5 6; 7 8 9.5]");
+  CHECK(detail::concat(std::string("s"), std::string_view("v"), 1e300, -0.0) == "sv1.0000000000000001e+300-0");
+  CHECK(detail::brief(1.0 / 3) == "0.333333");
+  CHECK(detail::concat(std::numeric_limits<double>::infinity()) == "inf");
 }
 
 TEST_CASE("joints refuse a zero or non-finite axis") {

@@ -23,6 +23,7 @@
 //    the same matrix given directly as MJCF fullinertia (measured here);
 // 2. an exact principal-axis decomposition (Eigen's) of those inertias
 //    replaces MuJoCo's, and q̈ must agree to 1e-9.
+#include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>
 
 #include <mujoco/mujoco.h>

@@ -12,13 +12,14 @@
 // slot 4·(number of frames) + i. The scene maps slots to the flattened DAE
 // vector; a component never knows where its variables live.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string_view>
 #include <type_traits>
 #include <utility>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 #include "flange/core/expr.hpp"
 #include "flange/detail/always_false.hpp"
@@ -194,14 +195,7 @@ bool all_finite(const V& v) {
 template <class V>
 void require_finite(std::string_view component, std::string_view kind, std::string_view what, const V& v) {
   if (!all_finite(v))
-    throw parameter_error(concat(kind, " \"", component, "\": parameter ", what, " is not finite (",
-                                 [&] {
-                                   std::ostringstream os;
-                                   if constexpr (std::is_arithmetic_v<V>) os << v;
-                                   else os << v.transpose();
-                                   return os.str();
-                                 }(),
-                                 ")"));
+    throw parameter_error(concat(kind, " \"", component, "\": parameter ", what, " is not finite (", v, ")"));
 }
 
 /// A unit axis from a user vector: finite and non-zero, then normalised (as
@@ -224,35 +218,62 @@ inline void require_rotation(std::string_view component, std::string_view kind, 
   require_finite(component, kind, what, R);
   const double err = (R * R.transpose() - Mat3d::Identity()).cwiseAbs().maxCoeff();
   if (err > 1e-9 || R.determinant() < 0)
-    throw parameter_error(concat(kind, " \"", component, "\": ", what, " = [", R.row(0), "; ", R.row(1), "; ",
-                                 R.row(2), "] is not a rotation (|R·R' − 1| = ", err, ", det R = ", R.determinant(),
+    throw parameter_error(concat(kind, " \"", component, "\": ", what, " = [", R, "] is not a rotation (|R·R' − 1| = ", err, ", det R = ", R.determinant(),
                                  "); give an orthogonal, right-handed matrix, or use orientation::axis_angle, "
                                  "cardan or rpy"));
 }
 
+/// The eigenvalues of a symmetric 3×3 matrix, ascending: cyclic Jacobi
+/// rotations until the off-diagonal entries vanish against the diagonal
+/// (each eigenvalue to about 1e-16 of the largest; a few sweeps).
+inline Vec3d symmetric_eigenvalues(const Mat3d& A) {
+  double a[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) a[i][j] = (A(i, j) + A(j, i)) / 2;
+  constexpr int pairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+  for (int sweep = 0; sweep < 32; ++sweep) {
+    const double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+    const double diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
+    if (!(off > 1e-36 * diag)) break;
+    for (const auto& pq : pairs) {
+      const int p = pq[0], q = pq[1], r = 3 - p - q;
+      if (a[p][q] == 0) continue;
+      const double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
+      const double t = std::abs(theta) > 1e150 ? 1 / (2 * theta)
+                                               : (theta >= 0 ? 1 : -1) / (std::abs(theta) + std::sqrt(theta * theta + 1));
+      const double c = 1 / std::sqrt(t * t + 1), sn = t * c;
+      a[p][p] -= t * a[p][q];
+      a[q][q] += t * a[p][q];
+      a[p][q] = a[q][p] = 0;
+      const double arp = a[r][p], arq = a[r][q];
+      a[r][p] = a[p][r] = c * arp - sn * arq;
+      a[r][q] = a[q][r] = sn * arp + c * arq;
+    }
+  }
+  Vec3d lam(a[0][0], a[1][1], a[2][2]);
+  if (lam(0) > lam(1)) std::swap(lam(0), lam(1));
+  if (lam(1) > lam(2)) std::swap(lam(1), lam(2));
+  if (lam(0) > lam(1)) std::swap(lam(0), lam(1));
+  return lam;
+}
+
 /// A physical inertia tensor: finite, symmetric, positive semi-definite, and
-/// its principal moments obey the triangle inequality.
+/// its principal moments obey the triangle inequality, to 1e-12 of J's
+/// largest entry.
 inline void require_inertia(std::string_view component, std::string_view kind, const Mat3d& J) {
   require_finite(component, kind, "J (inertia)", J);
   const double scale = std::max(J.cwiseAbs().maxCoeff(), 1e-300);
-  auto show = [&] {
-    std::ostringstream os;
-    os << "[" << J.row(0) << "; " << J.row(1) << "; " << J.row(2) << "]";
-    return os.str();
-  };
   if ((J - J.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
-    throw parameter_error(concat(kind, " \"", component, "\": inertia J = ", show(), " is not symmetric"));
-  const Eigen::Vector3d lam = Eigen::SelfAdjointEigenSolver<Mat3d>(J, Eigen::EigenvaluesOnly).eigenvalues();
+    throw parameter_error(concat(kind, " \"", component, "\": inertia J = [", J, "] is not symmetric"));
+  const Vec3d lam = symmetric_eigenvalues(J);
   const double tol = 1e-12 * scale;
-  if (lam.minCoeff() < -tol)
-    throw parameter_error(concat(kind, " \"", component, "\": inertia J = ", show(),
-                                 " is not positive semi-definite (smallest principal moment ", lam.minCoeff(), ")"));
-  for (int i = 0; i < 3; ++i)
-    if (lam(i) > lam((i + 1) % 3) + lam((i + 2) % 3) + tol)
-      throw parameter_error(concat(kind, " \"", component, "\": inertia J = ", show(),
-                                   " breaks the triangle inequality: principal moment ", lam(i),
-                                   " exceeds the sum of the other two (", lam((i + 1) % 3) + lam((i + 2) % 3),
-                                   ")"));
+  if (lam(0) < -tol)
+    throw parameter_error(concat(kind, " \"", component, "\": inertia J = [", J,
+                                 "] is not positive semi-definite (smallest principal moment ", lam(0), ")"));
+  if (lam(2) > lam(0) + lam(1) + tol)
+    throw parameter_error(concat(kind, " \"", component, "\": inertia J = [", J,
+                                 "] breaks the triangle inequality: principal moment ", lam(2),
+                                 " exceeds the sum of the other two (", lam(0) + lam(1), ")"));
 }
 
 }  // namespace detail

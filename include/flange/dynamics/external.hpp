@@ -9,7 +9,6 @@
 // without force elements has none of this.
 #pragma once
 #include <array>
-#include <sstream>
 #include <vector>
 #include <string>
 
@@ -204,14 +203,18 @@ FLANGE_INLINE void gather_external(const S& scene, const T& t, const state_of<T>
 
 template <class T>
 [[nodiscard]] std::string describe_state(const T* q, int nq, const T* v, int nv) {
-  std::ostringstream os;
-  os.precision(17);
-  os << "q = [";
-  for (int i = 0; i < nq; ++i) os << (i ? ", " : "") << static_cast<long double>(q[i]);
-  os << "], v = [";
-  for (int i = 0; i < nv; ++i) os << (i ? ", " : "") << static_cast<long double>(v[i]);
-  os << "]";
-  return os.str();
+  std::string out = "q = [";
+  for (int i = 0; i < nq; ++i) {
+    if (i) out += ", ";
+    append_number(out, static_cast<long double>(q[i]));
+  }
+  out += "], v = [";
+  for (int i = 0; i < nv; ++i) {
+    if (i) out += ", ";
+    append_number(out, static_cast<long double>(v[i]));
+  }
+  out += "]";
+  return out;
 }
 /// The state (q, v) as values, for a simulation_error.
 template <class T>

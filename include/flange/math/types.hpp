@@ -2,6 +2,7 @@
 // scalar type so that double, long double and dual numbers share one code path.
 #pragma once
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products, quaternions
 
 #include "flange/detail/inline.hpp"
 

@@ -33,7 +33,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <sstream>
 
 #include "flange/errors.hpp"
 #include "flange/simulate/system.hpp"
@@ -52,12 +51,13 @@ struct budget {
 namespace detail {
 template <class State>
 std::string describe(const State& x) {
-  std::ostringstream os;
-  os.precision(17);
-  os << "x = [";
-  for (std::size_t i = 0; i < x.size(); ++i) os << (i ? ", " : "") << static_cast<double>(x[i]);
-  os << "]";
-  return os.str();
+  std::string out = "x = [";
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (i) out += ", ";
+    append_number(out, static_cast<double>(x[i]));
+  }
+  out += "]";
+  return out;
 }
 template <class State>
 bool finite(const State& x) {
@@ -106,9 +106,9 @@ drift_report invariant_drift(const S& scene, const State& x) {
   return d;
 }
 
-inline std::string budget_spent(long max_rhs_evals) {
-  return "the budget of " + std::to_string(max_rhs_evals) +
-         " derivative evaluations is spent (a stiff scene for an explicit stepper? try rosenbrock4)";
+[[gnu::cold]] inline std::string budget_spent(long max_rhs_evals) {
+  return concat("the budget of ", max_rhs_evals,
+                " derivative evaluations is spent (a stiff scene for an explicit stepper? try rosenbrock4)");
 }
 }  // namespace detail
 
