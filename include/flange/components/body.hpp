@@ -73,6 +73,27 @@ inline Mat3d inertia_about_origin(double m, const Mat3d& J, const Vec3d& r_cm) {
   const Mat3d c = tilde<double>(r_cm);
   return J - m * c * c;
 }
+/// A Body's parameters checked: the mass finite and non-negative, J a
+/// physical inertia (diagonal for inertia_kind::diagonal, zero for a point
+/// mass), r_cm finite and zero unless the body is declared cm::offset. A
+/// plain function, compiled once with the headers rather than once for each
+/// body of each scene.
+inline void check_body(std::string_view name, bool diagonal, bool point, bool cm_offset, double m, const Mat3d& J,
+                       const Vec3d& r_cm) {
+  require_finite(name, "Body", "m (mass)", m);
+  if (m < 0) throw parameter_error(concat("Body \"", name, "\": mass m = ", m, " is negative"));
+  require_inertia(name, "Body", J);
+  if (diagonal && (J(0, 1) != 0 || J(0, 2) != 0 || J(1, 0) != 0 || J(1, 2) != 0 || J(2, 0) != 0 || J(2, 1) != 0))
+    throw parameter_error(concat("Body \"", name, "\": declared with a diagonal inertia, but J = [", J,
+                                 "] has products of inertia; use inertia_kind::full"));
+  if (point && !all_zero(J))
+    throw parameter_error(concat("Body \"", name, "\": a point mass has no rotational inertia, but J = [", J,
+                                 "] was given; leave J out, or make it a Body with inertia_kind::full"));
+  require_finite(name, "Body", "r_cm", r_cm);
+  if (!cm_offset && !all_zero(r_cm))
+    throw parameter_error(concat("Body \"", name, "\": r_cm = [", r_cm, "] is not zero; declare the body as Body<\"",
+                                 name, "\", cm::offset> to give it a centre-of-mass offset"));
+}
 }  // namespace detail
 
 template <fixed_string Name, class CM = cm::at_frame, class Inertia = inertia_kind::full>
@@ -98,22 +119,7 @@ class Body {
   };
 
   explicit Body(params p) : m_(p.m), J_(p.J), r_cm_(p.r_cm) {
-    detail::require_finite(name.view(), "Body", "m (mass)", m_);
-    if (m_ < 0) throw parameter_error(detail::concat("Body \"", name.view(), "\": mass m = ", m_, " is negative"));
-    detail::require_inertia(name.view(), "Body", J_);
-    if (is_diagonal && !(J_ - Mat3d(J_.diagonal().asDiagonal())).isZero(0.0))
-      throw parameter_error(detail::concat("Body \"", name.view(), "\": declared with a diagonal inertia, but J = [",
-                                           J_.row(0), "; ", J_.row(1), "; ", J_.row(2),
-                                           "] has products of inertia; use inertia_kind::full"));
-    if (is_point && !J_.isZero(0.0))
-      throw parameter_error(detail::concat("Body \"", name.view(), "\": a point mass has no rotational inertia, but J = [",
-                                           J_.row(0), "; ", J_.row(1), "; ", J_.row(2),
-                                           "] was given; leave J out, or make it a Body with inertia_kind::full"));
-    detail::require_finite(name.view(), "Body", "r_cm", r_cm_);
-    if (!has_cm_offset && !r_cm_.isZero(0.0))
-      throw parameter_error(detail::concat("Body \"", name.view(), "\": r_cm = [", r_cm_.transpose(),
-                                           "] is not zero; declare the body as Body<\"", name.view(),
-                                           "\", cm::offset> to give it a centre-of-mass offset"));
+    detail::check_body(name.view(), is_diagonal, is_point, has_cm_offset, m_, J_, r_cm_);
   }
 
   [[nodiscard]] double m() const { return m_; }

@@ -186,10 +186,28 @@ auto eval_input(const In& in, const T& t, const X& x) {
 
 namespace detail {
 
+/// Whether every entry is finite: a number, or a fixed-size Eigen matrix
+/// entry by entry (Eigen's allFinite() builds expression templates that cost
+/// a small unit a tenth of a second to compile).
 template <class V>
 bool all_finite(const V& v) {
-  if constexpr (std::is_arithmetic_v<V>) return std::isfinite(v);
-  else return v.allFinite();
+  if constexpr (std::is_arithmetic_v<V>) {
+    return std::isfinite(v);
+  } else {
+    for (int j = 0; j < int(v.cols()); ++j)
+      for (int i = 0; i < int(v.rows()); ++i)
+        if (!std::isfinite(v(i, j))) return false;
+    return true;
+  }
+}
+
+/// Whether every entry of a fixed-size Eigen matrix is zero.
+template <class V>
+bool all_zero(const V& v) {
+  for (int j = 0; j < int(v.cols()); ++j)
+    for (int i = 0; i < int(v.rows()); ++i)
+      if (v(i, j) != 0) return false;
+  return true;
 }
 
 template <class V>

@@ -205,6 +205,48 @@ void turn_to_axis_frames(const S& scene, Model& model) {
   }
 }
 
+// The scene-independent arithmetic and messages of build_model, as plain
+// functions out of line: their Eigen products are compiled once with the
+// headers (and kept in a precompiled header), and called, not copied into
+// each component's branch of the scene's construction.
+
+/// Set s's pose from its parent set's (Rp, pp) through a rigid edge whose
+/// frame_b sits at x in its frame_a, walked forwards (from frame_a) or back.
+[[gnu::noinline]] inline void place_set(Mat3d& R, Vec3d& p, const Mat3d& Rp, const Vec3d& pp, const pose<double>& x,
+                                        bool forward) {
+  if (forward) {
+    R = x.R * Rp;
+    p = pp + Rp.transpose() * x.p;
+  } else {
+    R = x.R.transpose() * Rp;
+    p = pp - Rp.transpose() * (x.R * x.p);
+  }
+}
+[[noreturn, gnu::cold]] inline void frame_overflows(const std::string& who, const Vec3d& p, double mass_scale) {
+  throw parameter_error(concat(who, ": it places a frame at [", p, "] m from its link's origin, where mass times "
+                               "length squared (", mass_scale, " kg · |p|²) overflows the dynamics; rescale the "
+                               "scene's units"));
+}
+[[noreturn, gnu::cold]] inline void total_mass_overflows(const std::string& who, double m) {
+  throw parameter_error(concat(who, ": mass m = ", m, " makes the scene's total mass overflow"));
+}
+/// Adds a body (mass m, centre of mass r_cm and inertia J about its frame,
+/// in the frame's coordinates) whose frame sits at p, turned by R, in its
+/// link; throws naming the body when the sum overflows.
+[[gnu::noinline]] inline void add_body(rigid_inertia<double>& link, const Mat3d& R, const Vec3d& p, double m,
+                                       const Vec3d& r_cm, const Mat3d& J, std::string_view type,
+                                       std::string_view name) {
+  rigid_inertia<double> b;
+  b.m = m;
+  b.h = R.transpose() * (m * r_cm);
+  b.I = R.transpose() * J * R;
+  link.add_shifted(b, p);
+  if (!(std::isfinite(link.m) && all_finite(link.h) && all_finite(link.I)))
+    throw parameter_error(concat(type, " \"", name, "\": its mass ", m, " kg at [", p + R.transpose() * r_cm,
+                                 "] m from its link's origin gives an inertia that overflows; rescale the scene's "
+                                 "units"));
+}
+
 template <class S>
 auto build_model(const S& scene) {
   constexpr auto& tree = S::tree;
@@ -219,9 +261,7 @@ auto build_model(const S& scene) {
     for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
       if constexpr (carries_body<std::remove_cvref_t<decltype(c)>>) {
         total_mass += c.m();
-        if (!std::isfinite(total_mass))
-          throw parameter_error(concat(describe_component(scene, decltype(i)::value), ": mass m = ", c.m(),
-                                       " makes the scene's total mass overflow"));
+        if (!std::isfinite(total_mass)) total_mass_overflows(describe_component(scene, decltype(i)::value), c.m());
       }
     });
     const double mass_scale = std::max(1.0, total_mass);
@@ -232,23 +272,13 @@ auto build_model(const S& scene) {
       const int ps = tree.set_parent[s];
       if (ps < 0) continue;
       visit_component(scene, tree.set_edge[s], [&](const auto& e) FLANGE_INLINE_LAMBDA {
-        if constexpr (std::remove_cvref_t<decltype(e)>::kind == role::rigid) {
-          const pose<double> x = e.template relative_pose<double>();
-          const Mat3d& Rp = model.set_rotation[ps];
-          if (tree.set_edge_dir[s] > 0) {
-            model.set_rotation[s] = x.R * Rp;
-            model.set_offset[s] = model.set_offset[ps] + Rp.transpose() * x.p;
-          } else {
-            model.set_rotation[s] = x.R.transpose() * Rp;
-            model.set_offset[s] = model.set_offset[ps] - Rp.transpose() * (x.R * x.p);
-          }
-        }
+        if constexpr (std::remove_cvref_t<decltype(e)>::kind == role::rigid)
+          place_set(model.set_rotation[s], model.set_offset[s], model.set_rotation[ps], model.set_offset[ps],
+                    e.template relative_pose<double>(), tree.set_edge_dir[s] > 0);
       });
       const Vec3d& p = model.set_offset[s];
-      if (!std::isfinite(mass_scale * p.squaredNorm()))
-        throw parameter_error(concat(describe_component(scene, tree.set_edge[s]), ": it places a frame at [",
-                                     p.transpose(), "] m from its link's origin, where mass times length squared (",
-                                     mass_scale, " kg · |p|²) overflows the dynamics; rescale the scene's units"));
+      if (!std::isfinite(mass_scale * (p(0) * p(0) + p(1) * p(1) + p(2) * p(2))))
+        frame_overflows(describe_component(scene, tree.set_edge[s]), p, mass_scale);
     }
     if constexpr (axis_frames<S>::any) turn_to_axis_frames(scene, model);
     for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
@@ -258,18 +288,8 @@ auto build_model(const S& scene) {
         if (tree.set_link[s] < 0) return;
         // The body's mass, first moment and inertia about frame_a, in the
         // set's coordinates, turned into its link's coordinates.
-        const Mat3d& R = model.set_rotation[s];
-        rigid_inertia<double> b;
-        b.m = c.m();
-        b.h = R.transpose() * (c.m() * c.r_cm());
-        b.I = R.transpose() * c.inertia_about_frame() * R;
-        auto& link = model.link[tree.set_link[s]];
-        link.add_shifted(b, model.set_offset[s]);
-        if (!(std::isfinite(link.m) && link.h.allFinite() && link.I.allFinite()))
-          throw parameter_error(concat(C::type_name, " \"", C::name.view(), "\": its mass ", c.m(), " kg at [",
-                                       (model.set_offset[s] + R.transpose() * c.r_cm()).transpose(),
-                                       "] m from its link's origin gives an inertia that overflows; rescale the "
-                                       "scene's units"));
+        add_body(model.link[tree.set_link[s]], model.set_rotation[s], model.set_offset[s], c.m(), c.r_cm(),
+                 c.inertia_about_frame(), C::type_name, C::name.view());
       }
     });
   }

@@ -573,7 +573,7 @@ FLANGE_INLINE auto trace(const diag_inertia<T, D>& I) {
 }
 template <class T>
 FLANGE_INLINE T trace(const Mat3<T>& I) {
-  return I.trace();
+  return I(0, 0) + I(1, 1) + I(2, 2);  // Eigen's trace(), without its reduction machinery to compile
 }
 
 /// The inertia as a dense matrix.
