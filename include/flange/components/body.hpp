@@ -76,8 +76,7 @@ inline Mat3d inertia_about_origin(double m, const Mat3d& J, const Vec3d& r_cm) {
 /// A Body's parameters checked: the mass finite and non-negative, J a
 /// physical inertia (diagonal for inertia_kind::diagonal, zero for a point
 /// mass), r_cm finite and zero unless the body is declared cm::offset. A
-/// plain function, compiled once with the headers rather than once for each
-/// body of each scene.
+/// plain function, compiled once per unit rather than once per body type.
 inline void check_body(std::string_view name, bool diagonal, bool point, bool cm_offset, double m, const Mat3d& J,
                        const Vec3d& r_cm) {
   require_finite(name, "Body", "m (mass)", m);

@@ -236,8 +236,8 @@ inline void require_rotation(std::string_view component, std::string_view kind, 
   require_finite(component, kind, what, R);
   const double err = (R * R.transpose() - Mat3d::Identity()).cwiseAbs().maxCoeff();
   if (err > 1e-9 || R.determinant() < 0)
-    throw parameter_error(concat(kind, " \"", component, "\": ", what, " = [", R, "] is not a rotation (|R·R' − 1| = ", err, ", det R = ", R.determinant(),
-                                 "); give an orthogonal, right-handed matrix, or use orientation::axis_angle, "
+    throw parameter_error(concat(kind, " \"", component, "\": ", what, " = [", R, "] is not a rotation (|R·R' − 1| = ",
+                                 err, ", det R = ", R.determinant(), "); give an orthogonal, right-handed matrix, or use orientation::axis_angle, "
                                  "cardan or rpy"));
 }
 

@@ -33,8 +33,8 @@ struct rigid_inertia {
   ///   I += I_o − m·p̃² − p̃·h̃ − h̃·p̃
   /// becomes (m|p|² + 2 p·h)·1 − m·p·p' − h·p' − p·h': outer products, no 3×3 products.
   void add_shifted(const rigid_inertia& o, const Vec3<T>& p) {
-    // Written out by entry: the outer products as Eigen expressions cost
-    // a fifth of a small scene's compile time, for 27 multiplications.
+    // Written out by entry: the outer products as Eigen expressions cost a
+    // small unit about a fifth of a second to compile, for 27 multiplications.
     const T mp[3] = {o.m * p[0], o.m * p[1], o.m * p[2]};
     const T diag = mp[0] * p[0] + mp[1] * p[1] + mp[2] * p[2] + T(2) * (p[0] * o.h[0] + p[1] * o.h[1] + p[2] * o.h[2]);
     for (int i = 0; i < 3; ++i) {
@@ -206,8 +206,7 @@ void turn_to_axis_frames(const S& scene, Model& model) {
 }
 
 // The scene-independent arithmetic and messages of build_model, as plain
-// functions out of line: their Eigen products are compiled once with the
-// headers (and kept in a precompiled header), and called, not copied into
+// functions out of line: compiled once per unit and called, not copied into
 // each component's branch of the scene's construction.
 
 /// Set s's pose from its parent set's (Rp, pp) through a rigid edge whose
