@@ -66,8 +66,7 @@ int main(int argc, char** argv) {
     const double tau = gain * (omega - y[3]);
     const double pivot = recover(fb, t, y).cut_at("rocker_pivot.frame_b").f.norm();
     force_max = std::max(force_max, pivot);
-    const auto k = detail::loop_kinematics<S>(fb, y.data(), y.data() + S::n_q);
-    const double phi = std::max(std::abs(k.phi[0]), std::abs(k.phi[1]));
+    const double phi = loop_residual(fb, y).max_phi();
     worst_freudenstein = std::max(worst_freudenstein, std::abs(std::remainder(th4 - ref, 2 * std::numbers::pi)));
     worst_phi = std::max(worst_phi, phi);
     torque_min = std::min(torque_min, tau);
@@ -76,7 +75,8 @@ int main(int argc, char** argv) {
         << std::remainder(ref, 2 * std::numbers::pi) << ',' << tau << ',' << pivot << ',' << phi << '\n';
   });
   std::cout << "flange four-bar: " << S::n_equations << " equations, " << S::n_unknowns << " unknowns; tree state of "
-            << S::n_state << ", " << detail::n_constraints<S>() << " loop constraints (cut at \"rocker_pivot\")\n"
+            << S::n_state << ", " << constraint_count<S> << " loop constraints (cut at \"" << cut_joints<S>()[0]
+            << "\")\n"
             << "  motor PD on the crank rate (2 rev/s), 5 s, dopri5 at 1e-10 with projection, " << steps << " steps\n"
             << "  crank turned " << x[0] / (2 * std::numbers::pi) << " revolutions; motor torque between "
             << torque_min << " and " << torque_max << " N m; force in the rocker's pivot up to " << force_max

@@ -59,8 +59,8 @@ int main(int argc, char** argv) {
     out << t << ',' << y[0] << ',' << y[slide] << ',' << y[S::n_q + slide] << ',' << dy[S::n_q + slide] << ','
         << ref.x << ',' << v << ',' << a << ',' << e << '\n';
   });
-  std::cout << "flange slider-crank: tree state of " << S::n_state << ", " << detail::n_constraints<S>()
-            << " loop constraints (cut at \"wrist_pin\")\n"
+  std::cout << "flange slider-crank: tree state of " << S::n_state << ", " << constraint_count<S>
+            << " loop constraints (cut at \"" << cut_joints<S>()[0] << "\")\n"
             << "  free run from 30 rad/s, 5 s, dopri5 at 1e-12 with projection, " << steps << " steps\n"
             << "  piston against the closed form: x " << worst_x << " m, v " << worst_v << " m/s, a " << worst_a
             << " m/s² at worst\n"

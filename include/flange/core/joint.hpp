@@ -182,6 +182,14 @@ template <class J>
 concept has_generalized_force = requires(const J& j, const double* p, double* tau, const joint_state<double>& x) {
   j.generalized_force(0.0, x, p, p, tau);
 };
+
+/// A joint type that can close a loop: it says what it leaves free, and
+/// has no force of its own (a drive or an axis law on a cut joint would act
+/// on a coordinate the state does not have).
+template <class J>
+concept cuttable = requires {
+  { J::as_cut } -> std::convertible_to<cut_freedom>;
+} && !has_generalized_force<J>;
 }  // namespace detail
 
 /// Whether a joint offers an axis frame (above): a run-time axis n() its

@@ -1,7 +1,8 @@
 // Closed kinematic loops: the constraints a cut joint puts on the tree.
 //
-// topology.hpp cuts each loop at a joint (the last joint written in it) and
-// leaves that joint out of the tree and of the state. What the cut joint
+// topology.hpp cuts each loop at a joint (the last joint written in it, or
+// another where that one cannot be cut or would leave a tree joint moving no
+// mass) and leaves that joint out of the tree and of the state. What the cut joint
 // would have done becomes constraints on the tree's coordinates: its two
 // frames, both placed by the tree, must stay related as the joint allows.
 // What a joint leaves free is its as_cut (core/joint.hpp); the rest is
@@ -39,14 +40,6 @@
 #include "flange/dynamics/links.hpp"
 
 namespace flange::detail {
-
-/// A joint type that can close a loop: it says what it leaves free, and
-/// has no force of its own (a drive or an axis law on a cut joint would act
-/// on a coordinate the state does not have).
-template <class J>
-concept cuttable = requires {
-  { J::as_cut } -> std::convertible_to<cut_freedom>;
-} && !has_generalized_force<J>;
 
 /// What the dynamics know of cut K at compile time.
 template <class S, int K>

@@ -96,10 +96,9 @@ struct kinematic_loop {
 template <class Joint>
 struct joint_cannot_close_loop {
   static_assert(always_false<Joint>,
-                "flange: this joint closes a kinematic loop (the last joint written in a loop is cut), and it cannot "
-                "be cut: its type cannot (an undriven Revolute or a Spherical can; a Prismatic's force input counts as a "
-                "force of its own), or it has a drive or an axis law; write the loop so that an undriven Revolute or a "
-                "Spherical joint of it comes last");
+                "flange: this joint closes a kinematic loop, and no joint of the loop can be cut in its place: its type "
+                "cannot (an undriven Revolute or a Spherical can; a Prismatic's force input counts as a force of its "
+                "own), or it has a drive or an axis law; give the loop an undriven Revolute or Spherical joint");
 };
 template <class Counts>
 struct loop_overconstrained {

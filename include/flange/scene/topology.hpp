@@ -27,6 +27,8 @@ struct scene_table {
   std::array<int, 2 * NK> conn{};
   std::array<int, NC> nq{}, nv{};            ///< a joint's configuration and velocity sizes (0 for others)
   std::array<int, NC> rigid_rotation{};      ///< a rigid edge's rotation: −2 none, −1 any, k about axis k
+  std::array<bool, NC> massive{};            ///< carries a body (mass at its frames)
+  std::array<bool, NC> can_cut{};            ///< a joint that can close a loop (detail::cuttable)
 };
 
 template <int NC, int NF, int NK>
@@ -237,6 +239,111 @@ struct tree {
   std::array<int, NC> cut_of{};               ///< component → its cut index, −1 for others
 };
 
+/// How bad a choice of cut joints is, 0 when it is good: 4·NC for each cut
+/// joint that cannot close a loop (a Universal, or a joint with a drive or
+/// an axis law), and 1 for each tree joint that moves no mass (no body
+/// beyond it: the tree's mass matrix is singular there, though the
+/// constrained system need not be). A choice that leaves a loop in the tree
+/// is not a choice (a large number). cluster: each set's rigid cluster.
+/// (Called only for a scene with no loop that no joint can close.)
+template <int NC, int NF, int NK>
+constexpr int cut_score(const scene_table<NC, NF, NK>& t, const topology<NC, NF, NK>& topo,
+                        const std::array<int, std::size_t(NF)>& cluster,
+                        const std::array<bool, std::size_t(NC)>& is_cut) {
+  constexpr int invalid = 1 << 30;
+  std::array<int, NF> uf{};
+  for (int i = 0; i < NF; ++i) uf[i] = i;
+  std::array<int, NF + 1> first{};
+  std::array<int, 2 * NC> incident{};
+  int score = 0;
+  for (int e = 0; e < NC; ++e) {
+    if (t.kinds[e] != role::joint) continue;
+    if (is_cut[e]) {
+      if (!t.can_cut[e]) score += 4 * NC;
+      continue;
+    }
+    const int a = cluster[topo.set_of[t.frame_base[e]]], b = cluster[topo.set_of[t.frame_base[e] + 1]];
+    const int ra = find_root(uf, a), rb = find_root(uf, b);
+    if (ra == rb) return invalid;
+    uf[rb] = ra;
+    ++first[a + 1];
+    ++first[b + 1];
+  }
+  for (int i = 0; i < NF; ++i) first[i + 1] += first[i];
+  std::array<int, NF> fill{};
+  for (int e = 0; e < NC; ++e)
+    if (t.kinds[e] == role::joint && !is_cut[e]) {
+      const int a = cluster[topo.set_of[t.frame_base[e]]], b = cluster[topo.set_of[t.frame_base[e] + 1]];
+      incident[first[a] + fill[a]++] = e;
+      incident[first[b] + fill[b]++] = e;
+    }
+  std::array<bool, NF> mass{};
+  for (int c = 0; c < NC; ++c)
+    if (t.massive[c]) mass[cluster[topo.set_of[t.frame_base[c]]]] = true;
+  // Breadth-first from the World's cluster; then each cluster's mass is
+  // added to its parent's, children before parents.
+  std::array<int, NF> order{}, parent{};
+  std::array<bool, NF> seen{};
+  int n = 0;
+  const int root = cluster[topo.set_of[t.frame_base[topo.world]]];
+  order[n++] = root;
+  seen[root] = true;
+  parent[root] = -1;
+  for (int head = 0; head < n; ++head) {
+    const int u = order[head];
+    for (int i = first[u]; i < first[u + 1]; ++i) {
+      const int e = incident[i];
+      const int a = cluster[topo.set_of[t.frame_base[e]]], b = cluster[topo.set_of[t.frame_base[e] + 1]];
+      const int other = a == u ? b : a;
+      if (seen[other]) continue;
+      seen[other] = true;
+      parent[other] = u;
+      order[n++] = other;
+    }
+  }
+  for (int k = n - 1; k > 0; --k) {
+    const int u = order[k];
+    if (!mass[u]) ++score;
+    else mass[parent[u]] = true;
+  }
+  return score;
+}
+
+/// The cut joints, improved from the writing order's: while the choice
+/// scores above 0 (cut_score), the swap of a cut joint for a tree joint that
+/// lowers the score most is made (a tree joint not on the cut joint's loop
+/// would leave a loop, and scores as no choice). A scene whose writing
+/// order's cuts are good keeps them.
+template <int NC, int NF, int NK>
+constexpr void choose_cuts(const scene_table<NC, NF, NK>& t, const topology<NC, NF, NK>& topo,
+                           const std::array<int, std::size_t(NF)>& cluster,
+                           std::array<bool, std::size_t(NC)>& is_cut) {
+  int score = cut_score(t, topo, cluster, is_cut);
+  for (int round = 0; score > 0 && round < NC; ++round) {
+    int best = score, from = -1, to = -1;
+    for (int c = 0; c < NC; ++c) {
+      if (!is_cut[c]) continue;
+      for (int j = 0; j < NC; ++j) {
+        if (t.kinds[j] != role::joint || is_cut[j]) continue;
+        is_cut[c] = false;
+        is_cut[j] = true;
+        const int s = cut_score(t, topo, cluster, is_cut);
+        is_cut[c] = true;
+        is_cut[j] = false;
+        if (s < best) {
+          best = s;
+          from = c;
+          to = j;
+        }
+      }
+    }
+    if (from < 0) return;
+    is_cut[from] = false;
+    is_cut[to] = true;
+    score = best;
+  }
+}
+
 template <int NC, int NF, int NK>
 constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topology<NC, NF, NK>& topo) {
   tree<NC, NF> r{};
@@ -248,13 +355,17 @@ constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topolo
   std::array<bool, NC> used{};
   // Loops first, by union–find: rigid edges, then joints, each in scene
   // order. A joint that joins two sets already joined closes a loop and is
-  // cut: the last joint written in each loop (docs/loops.md). A rigid edge
-  // that does so closes a loop of rigid edges, which nothing can cut, and so
-  // does a joint whose two frames are in one set.
+  // cut: the last joint written in each loop (docs/loops.md), unless that
+  // choice is bad (choose_cuts). A rigid edge that closes a loop closes a
+  // loop of rigid edges, which nothing can cut, and so does a joint whose
+  // two frames are in one set.
   if (topo.ok()) {
-    std::array<int, NF> uf{};
+    std::array<int, NF> uf{}, cluster{};
+    std::array<bool, NC> is_cut{};
     for (int i = 0; i < NF; ++i) uf[i] = i;
-    for (int pass = 0; pass < 2; ++pass)
+    for (int pass = 0; pass < 2; ++pass) {
+      if (pass == 1)
+        for (int i = 0; i < NF; ++i) cluster[i] = find_root(uf, i);  // the rigid clusters
       for (int e = 0; e < NC; ++e) {
         if (t.kinds[e] != (pass == 0 ? role::rigid : role::joint)) continue;
         const int sa = topo.set_of[t.frame_base[e]], sb = topo.set_of[t.frame_base[e] + 1];
@@ -267,10 +378,20 @@ constexpr tree<NC, NF> build_tree(const scene_table<NC, NF, NK>& t, const topolo
         if (pass == 0 || sa == sb) {
           if (r.loop < 0) r.loop = e;
         } else {
-          r.cut_of[e] = r.n_cuts;
-          r.cuts[r.n_cuts++] = e;
+          is_cut[e] = true;
+          ++r.n_cuts;
         }
       }
+    }
+    if (r.n_cuts > 0 && r.loop < 0) choose_cuts(t, topo, cluster, is_cut);
+    r.n_cuts = 0;
+    for (int e = 0; e < NC; ++e)
+      if (is_cut[e]) {
+        r.cut_of[e] = r.n_cuts;
+        r.cuts[r.n_cuts++] = e;
+      }
+    for (int e = 0; e < NC; ++e)
+      if (t.kinds[e] == role::joint && r.loop < 0) used[e] = is_cut[e];
   }
   for (int c = 0; c < NC; ++c) {
     r.joint_index[c] = r.q_offset[c] = r.v_offset[c] = -1;

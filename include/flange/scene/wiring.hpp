@@ -43,7 +43,9 @@ constexpr auto component_table() {
         t.frame_base[c] = base;
         for (int k = 0; k < int(Cs::frames.size()); ++k) t.frame_names[c][k] = Cs::frames[k];
         base += int(Cs::frames.size());
+        t.massive[c] = carries_body<Cs>;
         if constexpr (Cs::kind == role::joint) {
+          t.can_cut[c] = cuttable<Cs>;
           if constexpr (joint_requirements::sizes<Cs>) {
             t.nq[c] = Cs::nq;
             t.nv[c] = Cs::nv;

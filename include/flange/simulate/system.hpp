@@ -12,6 +12,7 @@
 #pragma once
 #include "flange/detail/inline.hpp"
 #include <array>
+#include <string_view>
 #include <cmath>
 #include <utility>
 
@@ -333,6 +334,20 @@ void close_loops(const S& scene, State& x) {
                                            "mechanism, or it is at a dead point; ",
                                            detail::describe_state(x.data(), S::n_q, x.data() + S::n_q, S::n_v)));
   }
+}
+
+/// The number of constraint rows of scene type S's loops (0 without loops):
+/// the length of loop_residual's Φ.
+template <class S>
+inline constexpr int constraint_count = detail::n_constraints<S>();
+
+/// The names of the joints scene type S cut, one per loop, in the order
+/// the scene lists them (docs/loops.md, "How loops are found and cut").
+template <class S>
+constexpr std::array<std::string_view, S::tree.n_cuts> cut_joints() {
+  std::array<std::string_view, S::tree.n_cuts> names{};
+  for (int k = 0; k < S::tree.n_cuts; ++k) names[k] = S::table.names[S::tree.cuts[k]];
+  return names;
 }
 
 /// How far a state is off the scene's loop constraints, row by row: Φ(q)

@@ -1,0 +1,257 @@
+// Where flange cuts a loop, and that the motion does not depend on it: the
+// writing order's cut (the last joint of a loop) is kept where it is good,
+// and moved where it would leave a joint moving no mass or where the joint
+// cannot be cut. Checked against the same mechanism cut elsewhere by hand
+// (a second formulation: another tree, other coordinates, other
+// constraints), through the bodies' world positions, and by energy.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string_view>
+
+#include <flange/flange.hpp>
+#include <flange/models/linkages.hpp>
+
+using namespace flange;
+
+namespace {
+
+/// Modelica's MultiBody.Examples.Loops.Fourbar1: six revolutes and a
+/// prismatic joint in one spatial loop, with the components in the order of
+/// its source (Order 0: j5 is written last, and cutting it would leave j3
+/// and j4 moving nothing with mass), with j1 moved to the end (Order 1: cut
+/// there by writing order), or with j2 moved to the end (Order 2: a
+/// Prismatic has a force input, which a cut joint cannot have).
+template <int Order>
+auto fourbar1() {
+  const auto j1 = Revolute<"j1", axis::x>{};
+  const auto j2 = Prismatic<"j2", axis::x>({});
+  const auto b1 = BodyCylinder<"b1">({.r = Vec3d(0, 0.5, 0.1), .diameter = 0.05});
+  const auto b2 = BodyCylinder<"b2">({.r = Vec3d(0, 0.2, 0), .diameter = 0.05});
+  const auto b3 = BodyCylinder<"b3">({.r = Vec3d(-1, 0.3, 0.1), .diameter = 0.05});
+  const auto rev = Revolute<"rev", axis::y>{};
+  const auto rev1 = Revolute<"rev1", axis::z>{};
+  const auto j3 = Revolute<"j3", axis::x>{};
+  const auto j4 = Revolute<"j4", axis::y>{};
+  const auto j5 = Revolute<"j5", axis::z>{};
+  const auto b0 = FixedTranslation<"b0">({.d = Vec3d(1.2, 0, 0)});
+  const auto connections = [](auto... components) {
+    return scene(World<"world">{}, components...,  //
+                 connect<"j2.frame_b", "b2.frame_a">, connect<"j1.frame_b", "b1.frame_a">,
+                 connect<"rev.frame_a", "b2.frame_b">, connect<"rev.frame_b", "rev1.frame_a">,
+                 connect<"rev1.frame_b", "b3.frame_a">, connect<"world.frame_b", "j1.frame_a">,
+                 connect<"b1.frame_b", "j3.frame_a">, connect<"j3.frame_b", "j4.frame_a">,
+                 connect<"j4.frame_b", "j5.frame_a">, connect<"j5.frame_b", "b3.frame_b">,
+                 connect<"b0.frame_a", "world.frame_b">, connect<"b0.frame_b", "j2.frame_a">);
+  };
+  if constexpr (Order == 0) return connections(j1, j2, b1, b2, b3, rev, rev1, j3, j4, j5, b0);
+  else if constexpr (Order == 1) return connections(j2, b1, b2, b3, rev, rev1, j3, j4, j5, b0, j1);
+  else return connections(j1, b1, b2, b3, rev, rev1, j3, j4, j5, b0, j2);
+}
+
+template <class S>
+constexpr std::string_view cut_name() {
+  return cut_joints<S>()[0];
+}
+
+/// The largest distance between the named frames of two runs, over their samples.
+template <class SA, class SB, class TA, class TB, std::size_t N>
+double largest_gap(const SA& a, const TA& ta, const SB& b, const TB& tb, const std::array<std::string_view, N>& frames) {
+  double gap = 0;
+  for (std::size_t k = 0; k < ta.size(); ++k) {
+    const auto ra = recover(a, ta.t[k], ta.x[k]);
+    const auto rb = recover(b, tb.t[k], tb.x[k]);
+    for (const auto f : frames) gap = std::max(gap, (ra.frame(f).r - rb.frame(f).r).norm());
+  }
+  return gap;
+}
+
+}  // namespace
+
+TEST_CASE("Modelica's Fourbar1 written in its source's order is cut where every joint moves mass") {
+  using S0 = decltype(fourbar1<0>());
+  using S1 = decltype(fourbar1<1>());
+  using S2 = decltype(fourbar1<2>());
+  // The writing order would cut j5; j3 and j4 would then carry only each
+  // other. Of the loop's joints only j1 and j2 leave mass beyond every
+  // joint, and j2 cannot be cut.
+  STATIC_REQUIRE(S0::tree.n_cuts == 1);
+  STATIC_REQUIRE(cut_name<S0>() == "j1");
+  STATIC_REQUIRE(cut_name<S1>() == "j1");  // written last, and good: kept
+  STATIC_REQUIRE(cut_name<S2>() == "j1");
+  STATIC_REQUIRE(S0::n_v == 6);
+  STATIC_REQUIRE(constraint_count<S0> == 5);  // a spatial revolute's cut
+}
+
+TEST_CASE("Fourbar1 moves the same whatever the writing order") {
+  const auto s0 = fourbar1<0>();
+  const auto s1 = fourbar1<1>();
+  const auto s2 = fourbar1<2>();
+  // All joints at 0 and j2 at −0.2 m close the loop (b3's two ends meet at
+  // (0, 0.5, 0.1)); j2 slides at 0.5 m/s, and gravity does the rest.
+  auto x0 = initial_state<"j2">(s0, {.q = -0.2, .v = 0.5});
+  close_loops<"j2">(s0, x0);
+  auto x1 = initial_state<"j2">(s1, {.q = -0.2, .v = 0.5});
+  close_loops<"j2">(s1, x1);
+  auto x2 = initial_state<"j2">(s2, {.q = -0.2, .v = 0.5});
+  close_loops<"j2">(s2, x2);
+
+  const auto times = output_times(0.0, 2.0, 0.05);
+  const simulate_options o{.tolerance = 1e-12};
+  const auto t0 = simulate(s0, x0, times, o);
+  const auto t1 = simulate(s1, x1, times, o);
+  const auto t2 = simulate(s2, x2, times, o);
+  const std::array<std::string_view, 3> frames{"b1.frame_b", "b2.frame_b", "b3.frame_a"};
+  // Other writing orders: other numberings of one tree.
+  CHECK(largest_gap(s0, t0, s1, t1, frames) < 1e-9);
+  CHECK(largest_gap(s0, t0, s2, t2, frames) < 1e-9);
+  // It moves (the comparison is not between resting mechanisms), and it
+  // keeps its energy.
+  const auto r_start = recover(s0, 0.0, t0.x.front());
+  const auto r_end = recover(s0, 2.0, t0.x.back());
+  CHECK((r_start.frame("b3.frame_a").r - r_end.frame("b3.frame_a").r).norm() > 0.02);
+  CHECK(std::abs(r_end.energy() - r_start.energy()) < 1e-9 * std::max(1.0, std::abs(r_start.energy())));
+}
+
+namespace {
+/// models::fourbar with joint Last (0 crank_pivot … 3 rocker_pivot) written
+/// last, which cuts it there.
+template <int Last>
+auto fourbar_cut_at(const models::fourbar_params& p) {
+  using models::bar;
+  const auto j0 = Revolute<"crank_pivot", axis::z>{};
+  const auto j1 = Revolute<"crank_pin", axis::z>{};
+  const auto j2 = Revolute<"rocker_pin", axis::z>{};
+  const auto j3 = Revolute<"rocker_pivot", axis::z>{};
+  const auto with = [&](auto a, auto b, auto c, auto d) {
+    return scene(World<"world">({.g = p.g}), a, b, c, bar<"crank">(p.crank, p.m_crank),
+                 bar<"coupler">(p.coupler, p.m_coupler), bar<"rocker">(p.rocker, p.m_rocker),
+                 FixedTranslation<"ground">({.d = Vec3d(p.ground, 0, 0)}), d,
+                 connect<"world.frame_b", "crank_pivot.frame_a">, connect<"crank_pivot.frame_b", "crank.frame_a">,
+                 connect<"crank.frame_b", "crank_pin.frame_a">, connect<"crank_pin.frame_b", "coupler.frame_a">,
+                 connect<"coupler.frame_b", "rocker_pin.frame_a">, connect<"rocker_pin.frame_b", "rocker.frame_a">,
+                 connect<"world.frame_b", "ground.frame_a">, connect<"ground.frame_b", "rocker_pivot.frame_a">,
+                 connect<"rocker.frame_b", "rocker_pivot.frame_b">);
+  };
+  if constexpr (Last == 0) return with(j1, j2, j3, j0);
+  else if constexpr (Last == 1) return with(j0, j2, j3, j1);
+  else return with(j0, j1, j3, j2);
+}
+
+/// x for scene S from the four-bar's joint angles (all four) and the crank
+/// pin's rate, closed holding the crank pin.
+template <class S>
+auto state_from_angles(const S& s, const std::array<double, 4>& phi, double crank_pin_rate) {
+  typename S::state_type x{};
+  constexpr std::array<std::string_view, 4> names{"crank_pivot", "crank_pin", "rocker_pin", "rocker_pivot"};
+  for (int k = 0; k < 4; ++k) {
+    const int c = S::index_of(names[k]);
+    if (S::tree.cut_of[c] < 0) x[S::tree.q_offset[c]] = phi[k];
+  }
+  x[S::n_q + S::tree.v_offset[S::index_of("crank_pin")]] = crank_pin_rate;
+  close_loops<"crank_pin">(s, x);
+  return x;
+}
+
+/// The planar four-bar with a massless coupler (a FixedTranslation, no
+/// body), and the rocker pin written last: the writing order would cut it
+/// and leave the crank pin carrying the coupler alone.
+auto fourbar_massless_coupler(const models::fourbar_params& p) {
+  using models::bar;
+  return scene(World<"world">({.g = p.g}),                                                         //
+               Revolute<"crank_pivot", axis::z>{}, bar<"crank">(p.crank, p.m_crank),               //
+               Revolute<"crank_pin", axis::z>{}, FixedTranslation<"coupler">({.d = Vec3d(p.coupler, 0, 0)}),
+               bar<"rocker">(p.rocker, p.m_rocker), FixedTranslation<"ground">({.d = Vec3d(p.ground, 0, 0)}),
+               Revolute<"rocker_pivot", axis::z>{}, Revolute<"rocker_pin", axis::z>{},
+               connect<"world.frame_b", "crank_pivot.frame_a">, connect<"crank_pivot.frame_b", "crank.frame_a">,
+               connect<"crank.frame_b", "crank_pin.frame_a">, connect<"crank_pin.frame_b", "coupler.frame_a">,
+               connect<"coupler.frame_b", "rocker_pin.frame_a">, connect<"rocker_pin.frame_b", "rocker.frame_a">,
+               connect<"world.frame_b", "ground.frame_a">, connect<"ground.frame_b", "rocker_pivot.frame_a">,
+               connect<"rocker.frame_b", "rocker_pivot.frame_b">);
+}
+}  // namespace
+
+TEST_CASE("a four-bar whose coupler has no mass runs and moves as the four-bar with a zero-mass coupler body") {
+  models::fourbar_params p;
+  p.m_coupler = 0;
+  const auto ref = models::fourbar(p);  // cut at rocker_pivot: the coupler body has m = 0, the rocker beyond it
+  const auto fb = fourbar_massless_coupler(p);
+  using S = decltype(fb);
+  STATIC_REQUIRE(cut_name<S>() == "crank_pivot");
+
+  const double th2 = 1.0;
+  const auto q = models::fourbar_coordinates(p, th2, models::freudenstein_rocker(p, th2));
+  std::array<double, 6> xr{q[0], q[1], q[2], 2.0, 0, 0};
+  close_loops<"crank_pivot">(ref, xr);
+  const auto rr = recover(ref, 0.0, xr);
+  auto x = initial_state<"crank_pin", "rocker_pivot", "rocker_pin">(
+      fb, {.q = xr[1], .v = xr[4]}, {.q = rr.internal<"rocker_pivot", "phi">()}, {.q = xr[2]});
+  close_loops<"crank_pin">(fb, x);
+
+  const auto times = output_times(0.0, 2.0, 0.05);
+  const simulate_options o{.tolerance = 1e-12};
+  const auto tr = simulate(ref, xr, times, o);
+  const auto tf = simulate(fb, x, times, o);
+  const std::array<std::string_view, 2> frames{"crank.frame_b", "rocker.frame_a"};
+  CHECK(largest_gap(ref, tr, fb, tf, frames) < 1e-9);
+  CHECK(std::abs(recover(fb, 2.0, tf.x.back()).energy() - recover(fb, 0.0, tf.x.front()).energy()) < 1e-9);
+}
+
+TEST_CASE("a loop whose last-written joint is driven is cut at another joint") {
+  using models::bar;
+  auto fb = scene(World<"world">{}, Revolute<"crank_pivot", axis::z>{}, bar<"crank">(0.3, 1.0),
+                  Revolute<"crank_pin", axis::z>{}, bar<"coupler">(1.0, 2.0), Revolute<"rocker_pin", axis::z>{},
+                  bar<"rocker">(0.8, 1.5), FixedTranslation<"ground">({.d = {1, 0, 0}}),
+                  revolute<"motor", axis::z>([](auto t) { return 0.0 * t + 1.0; }),
+                  connect<"world.frame_b", "crank_pivot.frame_a">, connect<"crank_pivot.frame_b", "crank.frame_a">,
+                  connect<"crank.frame_b", "crank_pin.frame_a">, connect<"crank_pin.frame_b", "coupler.frame_a">,
+                  connect<"coupler.frame_b", "rocker_pin.frame_a">, connect<"rocker_pin.frame_b", "rocker.frame_a">,
+                  connect<"world.frame_b", "ground.frame_a">, connect<"ground.frame_b", "motor.frame_a">,
+                  connect<"rocker.frame_b", "motor.frame_b">);
+  using S = decltype(fb);
+  STATIC_REQUIRE(cut_name<S>() == "crank_pivot");
+  STATIC_REQUIRE(S::tree.cut_of[S::index_of("motor")] < 0);
+  // The motor's constant torque τ = 1 N m does the work τ·(φ(t) − φ(0)):
+  // the energy (kinetic and gravity's) grows by that much.
+  const models::fourbar_params p;  // the same bars
+  const auto ref = models::fourbar(p);
+  const auto q = models::fourbar_coordinates(p, 1.0, models::freudenstein_rocker(p, 1.0));
+  std::array<double, 6> xr{q[0], q[1], q[2], 0, 0, 0};
+  close_loops<"crank_pivot">(ref, xr);
+  auto x = initial_state<"crank_pin", "rocker_pin", "motor">(
+      fb, {.q = xr[1]}, {.q = xr[2]}, {.q = recover(ref, 0.0, xr).internal<"rocker_pivot", "phi">()});
+  close_loops<"motor">(fb, x);
+  const auto r0 = recover(fb, 0.0, x);
+  const auto x1 = simulate(fb, x, 0.0, 1.0, {.tolerance = 1e-11});
+  const auto r1 = recover(fb, 1.0, x1);
+  const double work = 1.0 * (r1.internal<"motor", "phi">() - r0.internal<"motor", "phi">());
+  CHECK(std::abs(r1.energy() - r0.energy() - work) < 1e-8);
+}
+
+TEST_CASE("the planar four-bar cut at each of its joints moves as the one cut at the rocker pivot") {
+  const models::fourbar_params p;
+  const auto ref = models::fourbar(p);
+  const auto f0 = fourbar_cut_at<0>(p);
+  const auto f1 = fourbar_cut_at<1>(p);
+  const auto f2 = fourbar_cut_at<2>(p);
+  STATIC_REQUIRE(cut_name<decltype(f0)>() == "crank_pivot");
+  STATIC_REQUIRE(cut_name<decltype(f1)>() == "crank_pin");
+  STATIC_REQUIRE(cut_name<decltype(f2)>() == "rocker_pin");
+  const double th2 = 1.0;
+  const auto q = models::fourbar_coordinates(p, th2, models::freudenstein_rocker(p, th2));
+  std::array<double, 6> xr{q[0], q[1], q[2], 2.0, 0, 0};
+  close_loops<"crank_pivot">(ref, xr);
+  const std::array<double, 4> phi{xr[0], xr[1], xr[2], recover(ref, 0.0, xr).internal<"rocker_pivot", "phi">()};
+  const auto times = output_times(0.0, 2.0, 0.05);
+  const simulate_options o{.tolerance = 1e-12};
+  const auto tr = simulate(ref, xr, times, o);
+  const std::array<std::string_view, 2> frames{"crank.frame_b", "rocker.frame_a"};
+  const auto x0 = state_from_angles(f0, phi, xr[4]);
+  CHECK(largest_gap(ref, tr, f0, simulate(f0, x0, times, o), frames) < 1e-9);
+  const auto x2 = state_from_angles(f2, phi, xr[4]);
+  CHECK(largest_gap(ref, tr, f2, simulate(f2, x2, times, o), frames) < 1e-9);
+  // The crank pin cut: hold the crank pivot at the reference's rate.
+  auto x1 = initial_state<"crank_pivot", "rocker_pin", "rocker_pivot">(f1, {.q = phi[0], .v = xr[3]}, {.q = phi[2]},
+                                                                       {.q = phi[3]});
+  close_loops<"crank_pivot">(f1, x1);
+  CHECK(largest_gap(ref, tr, f1, simulate(f1, x1, times, o), frames) < 1e-9);
+}
