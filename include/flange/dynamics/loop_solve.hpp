@@ -108,6 +108,18 @@ int solve_semidefinite(Eigen::Matrix<T, M, M>& A, const T* b, T* x) {
 inline constexpr double constraint_damping = 3e-3;
 inline constexpr int constraint_sweeps = 4;
 
+/// A row of B whose part independent of the rows before it is at most this
+/// fraction of its own norm repeats them: the constraints are redundant
+/// there (Bricard's linkage, a planar loop written with run-time axes, the
+/// symmetric legs of a parallel mechanism), and the row is left out of the
+/// solve. Such a row's remainder is round-off and the state's drift off the
+/// constraints (measured on Bricard's linkage: at most 2e-8), whose direction
+/// is noise: a row kept and damped pulled the accelerations along it, and
+/// the steps collapsed. A row that only vanishes at a singular position keeps
+/// its own direction (the parallelogram four-bar through its flat positions:
+/// 0.64 and up), and is damped as below.
+inline constexpr double constraint_redundancy = 1e-3;
+
 /// v̇ for the constrained equations of motion, given the factors of M
 /// (ldlt.hpp) and y = M⁻¹·(τ − b).
 ///
@@ -167,11 +179,15 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   // Q's columns overwrite B's; R's row j is pivot step j, its columns are kept
   // by original index (later swaps of p must not move them).
   std::array<std::array<T, m>, m> R;
+  const std::array<T, m> norm2_0 = norm2;
   int rank = 0;
   for (int j = 0; j < m; ++j) {
-    int best = j;
-    for (int c = j + 1; c < m; ++c)
-      if (norm2[p[c]] > norm2[p[best]]) best = c;
+    int best = -1;
+    for (int c = j; c < m; ++c)
+      if (norm2[p[c]] > T(constraint_redundancy * constraint_redundancy) * norm2_0[p[c]] &&
+          (best < 0 || norm2[p[c]] > norm2[p[best]]))
+        best = c;
+    if (best < 0) break;
     std::swap(p[j], p[best]);
     const int cj = p[j];
     T nn(0);

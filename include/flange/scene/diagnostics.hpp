@@ -21,9 +21,6 @@ namespace diagnostic {
 template <int N> struct equations_declared {};
 template <int N> struct equations_needed {};
 template <int N> struct unknowns {};
-template <int N> struct constraints {};
-template <int N> struct rates {};
-template <class... Joints> struct cut_joints {};
 template <int N> struct state_size_given {};
 template <int N> struct state_size_needed {};
 
@@ -99,14 +96,6 @@ struct joint_cannot_close_loop {
                 "flange: this joint closes a kinematic loop, and no joint of the loop can be cut in its place: its type "
                 "cannot (an undriven Revolute or a Spherical can; a Prismatic's force input counts as a force of its "
                 "own), or it has a drive or an axis law; give the loop an undriven Revolute or Spherical joint");
-};
-template <class Counts>
-struct loop_overconstrained {
-  static_assert(always_false<Counts>,
-                "flange: the loops lock more relative motions (constraints) than the tree's joints have rates "
-                "(the counts and the cut joints are the template arguments); give the loops more joints, or, for a "
-                "planar mechanism, put every joint's axis on the same coordinate axis (axis::z) so that only the "
-                "in-plane constraints count");
 };
 template <class Component>
 struct not_tied_through_joints {

@@ -50,7 +50,6 @@ class System : public S {
                                              diagnostic::not_tied_through_joints>());
     static_assert(detail::report_list<(S::topology.ok() ? detail::first_uncuttable_joint<S>() : -1),
                                       diagnostic::joint_cannot_close_loop, typename S::component_types>::value);
-    static_assert(report_overconstrained());
     // Unless the scene has said what is missing: a small scene's derivative
     // is compiled into the caller (dynamics/algorithm.hpp, inline_derivative),
     // a larger one is called.
@@ -61,18 +60,6 @@ class System : public S {
   }
 
  private:
-  static constexpr bool report_overconstrained() {
-    if constexpr (S::topology.ok() && detail::n_constraints<S>() > S::n_v) {
-      constexpr auto cut_types = []<int... K>(std::integer_sequence<int, K...>) {
-        return diagnostic::cut_joints<typename detail::cut_info<S, K>::joint_type...>{};
-      }(std::make_integer_sequence<int, S::tree.n_cuts>{});
-      (void)sizeof(diagnostic::loop_overconstrained<
-                   detail::type_list<diagnostic::constraints<detail::n_constraints<S>()>,
-                                     diagnostic::rates<S::n_v>, std::remove_const_t<decltype(cut_types)>>>);
-    }
-    return true;
-  }
-
   /// A larger scene's derivative: one function, called.
   template <class State, class T>
   void derivative(const State& x, State& dxdt, const T t) const {
@@ -381,6 +368,40 @@ loop_residuals<detail::n_constraints<S>()> loop_residual(const S& scene, const S
     r.phid = k.phid;
   } else {
     (void)scene;
+  }
+  return r;
+}
+
+/// The rank of a scene's loop constraints at a state, and what it leaves.
+struct loop_rank_info {
+  int rows = 0;  ///< the constraint rows (constraint_count)
+  int rank = 0;  ///< the independent ones: fewer where rows repeat others
+  int dof = 0;   ///< the tree's rates less the rank: the mechanism's degrees of freedom there
+};
+
+/// The rank of G at x (rows in comparable units, a row counted when its
+/// part independent of the others is above 1e-5 of the largest): Bricard's
+/// linkage has 5 rows of rank 4 and 1 degree of freedom, a planar four-bar
+/// written with run-time axes 5 rows of rank 2. A scene without loops has
+/// no rows and its tree's rates as degrees of freedom.
+template <class S, class State>
+loop_rank_info loop_rank(const S& scene, const State& x) {
+  S::require_state_size(x);
+  constexpr int m = detail::n_constraints<S>(), n = S::n_v;
+  loop_rank_info r{m, 0, n};
+  if constexpr (detail::has_loops<S>) {
+    const auto k = detail::loop_kinematics<S>(scene, x.data(), x.data() + S::n_q);
+    const auto units = detail::row_units(scene);
+    Eigen::Matrix<double, m, m> A;
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j) {
+        double a = 0;
+        for (int c = 0; c < n; ++c) a += k.G(i, c) * k.G(j, c);
+        A(i, j) = units[i] * units[j] * a;
+      }
+    std::array<double, m> zero{}, y;
+    r.rank = detail::solve_semidefinite<m>(A, zero.data(), y.data());
+    r.dof = n - r.rank;
   }
   return r;
 }
