@@ -129,10 +129,10 @@ TEST_CASE("Bricard's linkage moves as the same linkage made non-redundant by a m
   // The same start: every angle 0, j2's rate (j1 is cut in s7) as s6 found it.
   auto x7 = initial_state<"j2">(s7, {.q = 0.0, .v = x6[5 + 1]});
   close_loops<"j2">(s7, x7);
-  // Until 2 s: near 2.45 s the linkage passes close to a position where the
-  // seven-joint loop's own constraints lose rank, and its solve there (rows
-  // damped, not dropped) gains 0.3 % of the energy, which the six-joint
-  // linkage keeps to 1e-10 (docs/loops.md).
+  // Until 2 s: near 2.4 s the linkage passes close to a position where the
+  // seven-joint loop's own constraints lose rank, and its damped solve
+  // loses the energy's digits there, which the six-joint linkage keeps to
+  // 1e-10 (docs/loops.md, "Redundant constraints").
   const auto times = output_times(0.0, 2.0, 0.05);
   const simulate_options o{.tolerance = 1e-12};
   const auto t6 = simulate(s6, x6, times, o);

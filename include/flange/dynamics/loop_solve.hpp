@@ -108,17 +108,26 @@ int solve_semidefinite(Eigen::Matrix<T, M, M>& A, const T* b, T* x) {
 inline constexpr double constraint_damping = 3e-3;
 inline constexpr int constraint_sweeps = 4;
 
-/// A row of B whose part independent of the rows before it is at most this
-/// fraction of its own norm repeats them: the constraints are redundant
-/// there (Bricard's linkage, a planar loop written with run-time axes, the
-/// symmetric legs of a parallel mechanism), and the row is left out of the
-/// solve. Such a row's remainder is round-off and the state's drift off the
-/// constraints (measured on Bricard's linkage: at most 2e-8), whose direction
-/// is noise: a row kept and damped pulled the accelerations along it, and
-/// the steps collapsed. A row that only vanishes at a singular position keeps
-/// its own direction (the parallelogram four-bar through its flat positions:
-/// 0.64 and up), and is damped as below.
-inline constexpr double constraint_redundancy = 1e-3;
+/// A row of B repeats the rows before it (the constraints are redundant:
+/// Bricard's linkage, a planar loop written with run-time axes, the
+/// symmetric legs of a parallel mechanism) when its part independent of
+/// them is at most constraint_redundancy times the state's drift off the
+/// constraints (max |Φ_i|, rows in comparable units), or
+/// constraint_redundancy_floor, of its own norm; it is then left out of the
+/// solve. On the constraints such a row is a combination of the others; off
+/// them its remainder grows with the drift (on Bricard's linkage at most
+/// 0.5 times it, and 1e-16 at no drift) and points nowhere in particular: a
+/// row kept and damped pulled the accelerations along that noise, and the
+/// steps collapsed. A row that is not redundant but vanishes at, or nears, a
+/// singular position keeps its own direction and a remainder that does not
+/// shrink with the drift (the parallelogram four-bar through its flat
+/// positions: 0.64 of its norm and up), and is damped as below. A fixed
+/// threshold does not tell them apart: at 1e-3 Bricard's linkage with a
+/// seventh joint, which is not redundant, had a real row dropped near a
+/// singular position and gained 0.3 % of its energy without an error
+/// (docs/loops.md, "Redundant constraints").
+inline constexpr double constraint_redundancy = 100;
+inline constexpr double constraint_redundancy_floor = 1e-10;
 
 /// v̇ for the constrained equations of motion, given the factors of M
 /// (ldlt.hpp) and y = M⁻¹·(τ − b).
@@ -160,8 +169,16 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   // a row that vanishes at a singular position is damped, a row that is only
   // small in B because of the masses is not.
   std::array<T, m> own = norm2;
+  // How far the state is off the constraints, rows in comparable units: a
+  // repeated row's remainder is at most about this (constraint_redundancy).
+  T drift(0);
   {
     const auto units = row_units(scene);
+    for (int c = 0; c < m; ++c) {
+      const T d = k.phi[c] * T(units[c]);
+      if (d > drift) drift = d;
+      else if (-d > drift) drift = -d;
+    }
     std::array<T, m> g2;
     T g2max(0);
     for (int c = 0; c < m; ++c) {
@@ -180,13 +197,14 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   // by original index (later swaps of p must not move them).
   std::array<std::array<T, m>, m> R;
   const std::array<T, m> norm2_0 = norm2;
+  T repeats = T(constraint_redundancy) * drift;  // a remainder at most this fraction of its row's norm: repeated
+  if (repeats < T(constraint_redundancy_floor)) repeats = T(constraint_redundancy_floor);
+  repeats = repeats * repeats;
   int rank = 0;
   for (int j = 0; j < m; ++j) {
     int best = -1;
     for (int c = j; c < m; ++c)
-      if (norm2[p[c]] > T(constraint_redundancy * constraint_redundancy) * norm2_0[p[c]] &&
-          (best < 0 || norm2[p[c]] > norm2[p[best]]))
-        best = c;
+      if (norm2[p[c]] > repeats * norm2_0[p[c]] && (best < 0 || norm2[p[c]] > norm2[p[best]])) best = c;
     if (best < 0) break;
     std::swap(p[j], p[best]);
     const int cj = p[j];
