@@ -123,9 +123,9 @@ inline constexpr int constraint_sweeps = 4;
 /// shrink with the drift (the parallelogram four-bar through its flat
 /// positions: 0.64 of its norm and up), and is damped as below. A fixed
 /// threshold does not tell them apart: at 1e-3 Bricard's linkage with a
-/// seventh joint, which is not redundant, had a real row dropped near a
-/// singular position and gained 0.3 % of its energy without an error
-/// (docs/loops.md, "Redundant constraints").
+/// seventh joint (cut at j1), which is not redundant, had a real row
+/// dropped near a singular position and gained 0.3 % of its energy without
+/// an error (docs/loops.md, "Redundant constraints").
 inline constexpr double constraint_redundancy = 100;
 inline constexpr double constraint_redundancy_floor = 1e-10;
 

@@ -311,9 +311,9 @@ constexpr int cut_score(const scene_table<NC, NF, NK>& t, const topology<NC, NF,
 
 /// The cut joints, improved from the writing order's: while the choice
 /// scores above 0 (cut_score), the swap of a cut joint for a tree joint that
-/// lowers the score most is made (a tree joint not on the cut joint's loop
-/// would leave a loop, and scores as no choice). A scene whose writing
-/// order's cuts are good keeps them.
+/// lowers the score most is made, of equal ones the joint written last (a
+/// tree joint not on the cut joint's loop would leave a loop, and scores as
+/// no choice). A scene whose writing order's cuts are good keeps them.
 template <int NC, int NF, int NK>
 constexpr void choose_cuts(const scene_table<NC, NF, NK>& t, const topology<NC, NF, NK>& topo,
                            const std::array<int, std::size_t(NF)>& cluster,
@@ -323,7 +323,7 @@ constexpr void choose_cuts(const scene_table<NC, NF, NK>& t, const topology<NC, 
     int best = score, from = -1, to = -1;
     for (int c = 0; c < NC; ++c) {
       if (!is_cut[c]) continue;
-      for (int j = 0; j < NC; ++j) {
+      for (int j = NC - 1; j >= 0; --j) {  // of equal swaps, the joint written last
         if (t.kinds[j] != role::joint || is_cut[j]) continue;
         is_cut[c] = false;
         is_cut[j] = true;
