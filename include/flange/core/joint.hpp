@@ -168,9 +168,14 @@ wrench<T> flows_b_from_a(const pose<T>& x, const wrench<T>& a) {
 }
 
 /// What a cut joint (one that closes a kinematic loop, dynamics/loops.hpp)
-/// leaves free between its frames: 0, 1 (about its axis n()) or 3 relative
-/// rotations, and 0 or 1 (along n()) relative translations. The loop's
-/// constraints lock the rest.
+/// leaves free between its frames; the loop's constraints lock the rest.
+///
+///   rotations     0; 1, about its axis n() (Revolute, Cylindrical, Planar);
+///                 2, about n_a() fixed in frame_a then n_b() fixed in
+///                 frame_b (Universal: the angle between the two axes is
+///                 kept); 3 (Spherical, FreeMotion)
+///   translations  0; 1, along n() (Prismatic, Cylindrical); 2, normal to
+///                 n() (Planar); 3 (FreeMotion)
 struct cut_freedom {
   int rotations = 0;
   int translations = 0;

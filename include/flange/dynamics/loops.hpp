@@ -10,12 +10,18 @@
 //
 //   translations  the origins meet:            d = r_b − r_a = 0        (3 rows)
 //                 or only across the axis n:   u_i·d = 0, u_i ⟂ n fixed in frame_a   (2)
+//                 or only along n:             n_a·d = 0                (1; a Planar joint)
+//                 or not at all                                         (0; FreeMotion)
 //   rotations     frame_b keeps n of frame_a:  u_i·n_b = 0, u_i ⟂ n_a   (2)
+//                 or two axes keep their angle: n_a·n_b = n_a·n_b at q = 0   (1; Universal)
 //                 or every axis:               e_j,a·e_k,b = 0 for (j, k) = (1, 2), (2, 0), (0, 1)   (3)
 //
-// A planar scene (every joint's axis the same coordinate axis k, from the
-// types: algebra.hpp) keeps only the in-plane rows: a revolute cut gives 2
-// rows instead of 5, a prismatic 2, and no row is redundant.
+// So a cut Revolute gives 5 rows, a Prismatic 5, a Spherical 3, a
+// Cylindrical 4, a Universal 4, a Planar 3 and a FreeMotion none. A planar
+// scene (every joint's axis the same coordinate axis k, from the types:
+// algebra.hpp) keeps only the in-plane rows: a revolute cut gives 2 rows
+// instead of 5, a prismatic 2, a Planar joint about k none, and no row is
+// redundant.
 //
 // Each row is Φ_i(q) = u·w for two vectors that turn with the frames (or
 // with the World); its rate is Φ̇_i = (ω_u × u)·w + u·ẇ exactly: coefficients
@@ -57,10 +63,10 @@ struct cut_info {
   static constexpr int link_b = S::tree.set_link[set_b];
   /// The plane's normal axis for a planar scene, −1 otherwise.
   static constexpr int plane = planar_axis<S>();
-  static constexpr int translation_rows = freedom.translations >= 2 ? 0 : (plane >= 0 ? 2 : 3) - freedom.translations;
-  static constexpr int rotation_rows = freedom.rotations >= 2 ? 0
-                                       : plane >= 0          ? 1 - freedom.rotations
-                                                             : 3 - freedom.rotations;
+  /// In a planar scene only the in-plane rows: 2 translations less those
+  /// left free (a Planar joint about the normal leaves both), 1 rotation.
+  static constexpr int translation_rows = plane >= 0 ? std::max(0, 2 - freedom.translations) : 3 - freedom.translations;
+  static constexpr int rotation_rows = plane >= 0 ? std::max(0, 1 - freedom.rotations) : 3 - freedom.rotations;
   static constexpr int rows = translation_rows + rotation_rows;
 };
 
@@ -77,8 +83,10 @@ constexpr int n_constraints() {
   return cut_row<S, S::tree.n_cuts>();
 }
 
+/// Whether the scene's loops constrain anything (a loop closed by a
+/// FreeMotion, or by a Planar joint in its own plane, does not).
 template <class S>
-inline constexpr bool has_loops = S::tree.n_cuts > 0;
+inline constexpr bool has_loops = n_constraints<S>() > 0;
 
 /// The first cut whose joint type cannot close a loop (−1: none).
 template <class S>
@@ -196,6 +204,8 @@ void cut_constraint(const S& scene, const set_motion<T>& a, const set_motion<T>&
   } else if constexpr (CI::translation_rows > 0) {
     if constexpr (CI::plane >= 0) {
       rows[i++] = translation_row<T, true>(in_a(Vec3d::Unit(CI::plane).cross(joint.n())), a, b);
+    } else if constexpr (CI::freedom.translations == 2) {  // in the plane normal to n: off it, not
+      rows[i++] = translation_row<T, true>(in_a(joint.n()), a, b);
     } else {
       Vec3d e1, e2;
       complete_basis(joint.n(), e1, e2);
@@ -204,7 +214,10 @@ void cut_constraint(const S& scene, const set_motion<T>& a, const set_motion<T>&
     }
   }
   if constexpr (CI::rotation_rows > 0) {
-    if constexpr (CI::freedom.rotations == 1) {
+    if constexpr (CI::freedom.rotations == 2) {  // n_a and n_b keep the angle between them
+      rows[i] = rotation_row<T>(in_a(joint.n_a()), in_b(joint.n_b()), a, b);
+      rows[i++].phi -= T(joint.n_a().dot(joint.n_b()));
+    } else if constexpr (CI::freedom.rotations == 1) {
       Vec3d e1, e2;
       complete_basis(joint.n(), e1, e2);
       const Vec3<T> n = in_b(joint.n());

@@ -78,6 +78,8 @@ class Cylindrical {
   /// It turns about its axis but also slides along it: never planar.
   static constexpr int planar_normal() { return Axis::fixed ? Axis::index : -1; }
   static constexpr bool moves_in_plane(int) { return false; }
+  /// Closing a loop, it leaves the rotation about n and the translation along it free.
+  static constexpr cut_freedom as_cut{.rotations = 1, .translations = 1};
 
   struct params {
     Vec3d n = Vec3d::UnitZ();  ///< ignored for a compile-time axis
@@ -116,6 +118,19 @@ class Cylindrical {
   void qdot(const T*, const T* v, T* qd) const {
     qd[0] = v[0];
     qd[1] = v[1];
+  }
+  /// As a cut joint: (s, φ) and their rates from frame_b's pose in frame_a
+  /// (R rotates frame_a coordinates into frame_b's, p is frame_b's origin
+  /// in frame_a coordinates) and the relative motion w, ṗ (frame_a
+  /// coordinates), the inverse of relative_pose on a closed loop.
+  template <class T>
+  void cut_state(const Mat3<T>& R, const Vec3<T>& p, const Vec3<T>& w, const Vec3<T>& pd, T* q, T* v) const {
+    Vec3d e1, e2;
+    complete_basis(n_, e1, e2);
+    q[0] = n_.cast<T>().dot(p);
+    q[1] = turn_about<T>(n_, e1, R * e1.cast<T>());
+    v[0] = n_.cast<T>().dot(pd);
+    v[1] = n_.cast<T>().dot(w);
   }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const {

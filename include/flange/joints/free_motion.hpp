@@ -78,6 +78,8 @@ class FreeMotion {
   static constexpr bool reversible = false;
   static constexpr int planar_normal() { return -1; }
   static constexpr bool moves_in_plane(int) { return false; }
+  /// Closing a loop, it leaves everything free: the loop has no constraint.
+  static constexpr cut_freedom as_cut{.rotations = 3, .translations = 3};
 
   struct params {};
   FreeMotion() = default;
@@ -98,6 +100,20 @@ class FreeMotion {
   void qdot(const T* q, const T* v, T* qd) const {
     for (int i = 0; i < 3; ++i) qd[i] = v[i];
     quaternion::rate(q + 3, v + 3, qd + 3);
+  }
+  /// As a cut joint: (r_rel, Q) and (ṙ_rel, ω) from frame_b's pose in
+  /// frame_a (R rotates frame_a coordinates into frame_b's, p is frame_b's
+  /// origin in frame_a coordinates) and the relative motion w, ṗ (frame_a
+  /// coordinates; ω is in frame_b's).
+  template <class T>
+  void cut_state(const Mat3<T>& R, const Vec3<T>& p, const Vec3<T>& w, const Vec3<T>& pd, T* q, T* v) const {
+    quaternion::from_rotation(R, q + 3);
+    const Vec3<T> wb = R * w;
+    for (int i = 0; i < 3; ++i) {
+      q[i] = p(i);
+      v[i] = pd(i);
+      v[3 + i] = wb(i);
+    }
   }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const {

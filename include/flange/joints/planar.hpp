@@ -101,6 +101,9 @@ class Planar {
   static constexpr bool reversible = false;
   static constexpr int planar_normal() { return Normal::fixed ? Normal::index : -1; }
   static constexpr bool moves_in_plane(int k) { return Normal::fixed && First::fixed && Normal::index == k; }
+  /// Closing a loop, it leaves the rotation about n and the translations
+  /// normal to it free.
+  static constexpr cut_freedom as_cut{.rotations = 1, .translations = 2};
 
   struct params {
     Vec3d n = Vec3d::UnitZ();    ///< the plane's normal, frame_a coordinates (ignored for a compile-time axis)
@@ -148,6 +151,17 @@ class Planar {
   template <class T>
   void qdot(const T*, const T* v, T* qd) const {
     for (int i = 0; i < 3; ++i) qd[i] = v[i];
+  }
+  /// As a cut joint: (s_x, s_y, φ) and their rates from frame_b's pose and
+  /// motion in frame_a (as Cylindrical's).
+  template <class T>
+  void cut_state(const Mat3<T>& R, const Vec3<T>& p, const Vec3<T>& w, const Vec3<T>& pd, T* q, T* v) const {
+    q[0] = ex_.cast<T>().dot(p);
+    q[1] = ey_.cast<T>().dot(p);
+    q[2] = turn_about<T>(n_, ex_, R * ex_.cast<T>());
+    v[0] = ex_.cast<T>().dot(pd);
+    v[1] = ey_.cast<T>().dot(pd);
+    v[2] = n_.cast<T>().dot(w);
   }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const {

@@ -271,11 +271,9 @@ class Revolute {
   /// w (frame_a coordinates), the inverse of relative_pose on a closed loop.
   template <class T>
   void cut_state(const Mat3<T>& R, const Vec3<T>&, const Vec3<T>& w, const Vec3<T>&, T* q, T* v) const {
-    using std::atan2;
     Vec3d e1, e2;
     complete_basis(n_, e1, e2);
-    const Vec3<T> Re1 = R * e1.cast<T>();
-    q[0] = atan2(-e2.cast<T>().dot(Re1), e1.cast<T>().dot(Re1));
+    q[0] = turn_about<T>(n_, e1, R * e1.cast<T>());
     v[0] = n_.cast<T>().dot(w);
   }
   template <class T, class Set>

@@ -116,6 +116,9 @@ class Universal {
   static constexpr bool reversible = true;
   static constexpr int planar_normal() { return -1; }
   static constexpr bool moves_in_plane(int) { return false; }
+  /// Closing a loop, it leaves the turns about n_a (in frame_a) and n_b (in
+  /// frame_b) free: the angle between the two axes is what it keeps.
+  static constexpr cut_freedom as_cut{.rotations = 2, .translations = 0};
 
   struct params {
     Vec3d n_a = Vec3d::UnitX();  ///< the first axis, frame_a coordinates (ignored for a compile-time axis)
@@ -157,6 +160,23 @@ class Universal {
   void qdot(const T*, const T* v, T* qd) const {
     qd[0] = v[0];
     qd[1] = v[1];
+  }
+  /// As a cut joint: (φ₁, φ₂) and their rates from frame_b's orientation R
+  /// in frame_a (R rotates frame_a coordinates into frame_b's) and the
+  /// relative angular velocity w (frame_a coordinates). R·n_a = R(n_b, φ₂)·n_a
+  /// gives φ₂ and Rᵀ·n_b = R(n_a, −φ₁)·n_b gives φ₁; w = n_a·φ̇₁ + Rᵀ·n_b·φ̇₂.
+  template <class T>
+  void cut_state(const Mat3<T>& R, const Vec3<T>&, const Vec3<T>& w, const Vec3<T>&, T* q, T* v) const {
+    const Vec3d a_off_b = (na_ - nb_ * nb_.dot(na_)).normalized();  // n_a's part normal to n_b
+    const Vec3d b_off_a = (nb_ - na_ * na_.dot(nb_)).normalized();
+    const Vec3<T> Ra = R * na_.cast<T>(), Rtb = R.transpose() * nb_.cast<T>();
+    q[1] = turn_about<T>(nb_, a_off_b, Ra);
+    q[0] = -turn_about<T>(na_, b_off_a, Rtb);
+    // w × c = (n_a × c)·φ̇₁ and w × n_a = (c × n_a)·φ̇₂, c = Rᵀ·n_b.
+    const Vec3<T> na = na_.cast<T>(), ac = na.cross(Rtb);
+    const T ac2 = ac.squaredNorm();
+    v[0] = w.cross(Rtb).dot(ac) / ac2;
+    v[1] = -w.cross(na).dot(ac) / ac2;
   }
   template <class T, class Set>
   void write_internals(const T* q, const T* v, Set&& set) const {

@@ -28,6 +28,16 @@ inline void complete_basis(const Vec3<double>& n, Vec3<double>& e1, Vec3<double>
   e2 = n.cross(e1);
 }
 
+/// The angle φ of the turn about the unit n that takes `from` to `to`, in
+/// the paper's convention (R(n, φ)·from = to for their parts normal to n,
+/// R = n·n' + (1 − n·n')·cos φ − ñ·sin φ): atan2(−(n × from)·to, from·to),
+/// for a `from` normal to n. What a cut joint's angles are (core/joint.hpp).
+template <class T>
+[[nodiscard]] T turn_about(const Vec3d& n, const Vec3d& from, const Vec3<T>& to) {
+  using std::atan2;
+  return atan2(-n.cross(from).template cast<T>().dot(to), from.template cast<T>().dot(to));
+}
+
 /// ã, the matrix with ã·b = a × b.
 template <class T>
 [[nodiscard]] FLANGE_INLINE Mat3<T> tilde(const Vec3<T>& a) {

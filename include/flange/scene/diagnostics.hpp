@@ -93,9 +93,10 @@ struct kinematic_loop {
 template <class Joint>
 struct joint_cannot_close_loop {
   static_assert(always_false<Joint>,
-                "flange: this joint closes a kinematic loop, and no joint of the loop can be cut in its place: its type "
-                "cannot (an undriven Revolute or a Spherical can; a Prismatic's force input counts as a force of its "
-                "own), or it has a drive or an axis law; give the loop an undriven Revolute or Spherical joint");
+                "flange: this joint closes a kinematic loop, and no joint of the loop can be cut in its place: each "
+                "has a drive or an axis law (a Prismatic's force input counts as a force of its own), whose force "
+                "would act on a coordinate the state does not have; give the loop one joint without a force of its "
+                "own (any kind but Prismatic)");
 };
 template <class Component>
 struct not_tied_through_joints {
