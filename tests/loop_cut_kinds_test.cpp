@@ -13,16 +13,13 @@
 
 #include <flange/flange.hpp>
 
+#include "loop_links.hpp"
+
 using namespace flange;
 
 namespace {
 
-/// A bar from frame_a to frame_b at r: 1 kg, I = m·L²/12 about every axis.
-template <fixed_string Name>
-auto link(const Vec3d& r) {
-  const double m = 1.0, L = r.norm();
-  return BodyShape<Name>({.r = r, .r_cm = r / 2, .m = m, .I = Mat3d::Identity() * (m * L * L / 12)});
-}
+using test::bar_to;
 
 /// A spatial four-bar, closed at q = 0: the crank turns about z at the
 /// origin (r1) out to A = (0.4, 0, 0); the coupler runs from A to
@@ -32,9 +29,9 @@ auto link(const Vec3d& r) {
 /// (first, second) is cut.
 template <class First, class Second>
 auto four_bar(const First& first, const Second& second) {
-  return scene(World<"world">{}, Revolute<"r1", axis::z>{}, link<"crank">({0.4, 0, 0}),
-               link<"coupler">({0, 0.8, 0.3}), FixedTranslation<"ground">({.d = {0.9, 0.8, 0.3}}),
-               Revolute<"r2", axis::y>{}, link<"rocker">({-0.5, 0, 0}), first, second,
+  return scene(World<"world">{}, Revolute<"r1", axis::z>{}, bar_to<"crank">({0.4, 0, 0}),
+               bar_to<"coupler">({0, 0.8, 0.3}), FixedTranslation<"ground">({.d = {0.9, 0.8, 0.3}}),
+               Revolute<"r2", axis::y>{}, bar_to<"rocker">({-0.5, 0, 0}), first, second,
                connect<"world.frame_b", "r1.frame_a">, connect<"r1.frame_b", "crank.frame_a">,
                connect<"crank.frame_b", "j.frame_a">, connect<"j.frame_b", "coupler.frame_a">,
                connect<"world.frame_b", "ground.frame_a">, connect<"ground.frame_b", "r2.frame_a">,
@@ -50,8 +47,8 @@ auto four_bar(const First& first, const Second& second) {
 /// "j" and "s", the one written last is cut.
 template <class First, class Second>
 auto planar_slider(const First& first, const Second& second) {
-  return scene(World<"world">{}, Revolute<"r1", axis::z>{}, link<"crank">({0.4, 0, 0}),
-               link<"coupler">({0, 0.8, 0.3}), FixedTranslation<"ground">({.d = {0.4, 0.8, 0.3}}),
+  return scene(World<"world">{}, Revolute<"r1", axis::z>{}, bar_to<"crank">({0.4, 0, 0}),
+               bar_to<"coupler">({0, 0.8, 0.3}), FixedTranslation<"ground">({.d = {0.4, 0.8, 0.3}}),
                Prismatic<"p", axis::x>{}, Body<"slider">({.m = 0.5, .J = Mat3d::Identity() * 0.01}), first, second,
                connect<"world.frame_b", "r1.frame_a">, connect<"r1.frame_b", "crank.frame_a">,
                connect<"crank.frame_b", "s.frame_a">, connect<"s.frame_b", "coupler.frame_a">,
@@ -65,7 +62,7 @@ auto planar_slider(const First& first, const Second& second) {
 /// no constraint; cut at r1, five rows hold the free bar to the pivot.
 template <class First, class Second>
 auto free_pendulum(const First& first, const Second& second) {
-  return scene(World<"world">{}, link<"bar">({0.6, 0, 0}), first, second,
+  return scene(World<"world">{}, bar_to<"bar">({0.6, 0, 0}), first, second,
                connect<"world.frame_b", "r1.frame_a">, connect<"r1.frame_b", "bar.frame_a">,
                connect<"world.frame_b", "j.frame_a">, connect<"j.frame_b", "bar.frame_a">);
 }
@@ -235,3 +232,35 @@ TEST_CASE("A loop cut at a FreeMotion has no constraint and moves as the loop cu
   CHECK(e < 1e-10);
 }
 
+TEST_CASE("A cut joint is read, set and held by name as a tree joint is") {
+  // The Cylindrical four-bar cut at j and, for the reference, cut at s
+  // (j then a joint of the tree, its state in x).
+  const auto c = Cylindrical<"j">({.n = {1, 0, 0}});
+  const auto cut_c = four_bar(Spherical<"s">{}, c);
+  const auto cut_s = four_bar(c, Spherical<"s">{});
+  const auto tc = run(cut_c);
+  const auto ts = run(cut_s);
+  double read = 0, set = 0, held = 0;
+  for (std::size_t k = 5; k < tc.size(); k += 10) {
+    // get_joint of the cut joint: its frames' reading, as the tree's state.
+    const auto jc = get_joint<"j">(cut_c, tc.x[k]);
+    const auto js = get_joint<"j">(cut_s, ts.x[k]);
+    for (int i = 0; i < 2; ++i) read = std::max({read, std::abs(jc.q[i] - js.q[i]), std::abs(jc.v[i] - js.v[i])});
+    // initial_state naming the cut joint closes the loop holding it there:
+    // the same position and motion as the reference run's at that time.
+    const auto x = initial_state<"j">(cut_c, {.q = js.q, .v = js.v});
+    for (const auto& [a, b] : {std::pair{get_joint<"r1">(cut_c, x), get_joint<"r1">(cut_s, ts.x[k])},
+                               std::pair{get_joint<"r2">(cut_c, x), get_joint<"r2">(cut_s, ts.x[k])}})
+      set = std::max({set, angle_gap(a.q, b.q), std::abs(a.v - b.v)});
+    // close_loops holding the cut joint leaves a closed state where it is.
+    auto y = tc.x[k];
+    close_loops<"j">(cut_c, y);
+    for (std::size_t i = 0; i < y.size(); ++i) held = std::max(held, std::abs(y[i] - tc.x[k][i]));
+  }
+  CHECK(read < 1e-10);
+  CHECK(set < 1e-10);
+  CHECK(held < 1e-12);
+  // A slide the coupler cannot reach while the loop closes.
+  CHECK_THROWS_WITH((initial_state<"j">(cut_c, {.q = {3.0, 0.0}})),
+                    Catch::Contains("cut joints held (\"j\") cannot be placed as asked"));
+}

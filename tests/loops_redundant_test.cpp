@@ -12,18 +12,15 @@
 #include <string_view>
 
 #include <flange/flange.hpp>
+
+#include "loop_links.hpp"
 #include <flange/models/linkages.hpp>
 
 using namespace flange;
 
 namespace {
 
-/// A bar from frame_a to frame_b at r: 1 kg, I = m·L²/12 about every axis.
-template <fixed_string Name>
-auto link(const Vec3d& r) {
-  const double m = 1.0, L = r.norm();
-  return BodyShape<Name>({.r = r, .r_cm = r / 2, .m = m, .I = Mat3d::Identity() * (m * L * L / 12)});
-}
+using test::bar_to;
 
 /// The orthogonal Bricard linkage along six edges of a unit cube: joint
 /// axes y, z, x, y, z, x, each bar along the common normal of its two axes,
@@ -32,9 +29,9 @@ auto link(const Vec3d& r) {
 template <bool Extra>
 auto bricard() {
   const auto parts = [](auto... extra) {
-    return scene(World<"world">{}, Revolute<"j1", axis::y>{}, link<"b1">({1, 0, 0}), Revolute<"j2", axis::z>{},
-                 link<"b2">({0, 1, 0}), Revolute<"j3", axis::x>{}, link<"b3">({0, 0, 1}), Revolute<"j4", axis::y>{},
-                 link<"b4">({-1, 0, 0}), Revolute<"j5", axis::z>{}, link<"b5">({0, -1, 0}),
+    return scene(World<"world">{}, Revolute<"j1", axis::y>{}, bar_to<"b1">({1, 0, 0}), Revolute<"j2", axis::z>{},
+                 bar_to<"b2">({0, 1, 0}), Revolute<"j3", axis::x>{}, bar_to<"b3">({0, 0, 1}), Revolute<"j4", axis::y>{},
+                 bar_to<"b4">({-1, 0, 0}), Revolute<"j5", axis::z>{}, bar_to<"b5">({0, -1, 0}),
                  FixedTranslation<"ground">({.d = {0, 0, 1}}), Revolute<"j6", axis::x>{}, extra...,
                  connect<"world.frame_b", "j1.frame_a">, connect<"j1.frame_b", "b1.frame_a">,
                  connect<"b1.frame_b", "j2.frame_a">, connect<"j2.frame_b", "b2.frame_a">,

@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "flange/dynamics/ldlt.hpp"
 #include "flange/dynamics/loops.hpp"
@@ -24,9 +25,7 @@ namespace flange::detail {
 /// The scene's size: the largest distance of a frame from its link's origin.
 template <class S>
 double characteristic_length(const S& scene) {
-  double L = 0;
-  for (const auto& o : scene.model().set_offset) L = std::max(L, o.norm());
-  return L > 0 ? L : 1.0;
+  return scene.model().length;
 }
 /// A length scale for the projection's tolerance: the scene's size, at least 1 m.
 template <class S>
@@ -290,20 +289,78 @@ constexpr int cut_of_row(int i) {
   return k;
 }
 
+/// Cut joints held at given coordinates and rates while the loops close
+/// (close_loops, initial_state): for each held cut K..., rows that ask its
+/// coordinates, as its frames give them, to be the targets q (angles the
+/// short way round) and its rates to be v. Each joint's coordinates are its
+/// rates' integrals (nq = nv: not a quaternion).
+template <class S, int... K>
+struct held_cuts {
+  static constexpr int rows = (0 + ... + cut_info<S, K>::joint_type::nv);
+  std::array<double, rows> q{}, v{};
+
+  /// Row i: its coordinate's distance from the target, and its G row.
+  template <class G>
+  void add(const S& scene, const double* qs, double* phi, G& g) const {
+    std::array<double, S::n_v> zero{};
+    const auto motions = link_motions<spatial_algebra, double, true>(scene, qs);
+    const auto ls = loop_link_states<S, double>(motions, zero.data());
+    int i = 0;
+    (
+        [&] {
+          using CI = cut_info<S, K>;
+          using J = typename CI::joint_type;
+          const auto a = motion_of_set<S, CI::set_a, double>(scene, ls);
+          const auto b = motion_of_set<S, CI::set_b, double>(scene, ls);
+          const auto r = read_cut(scene.template component<CI::joint>(), a, b);
+          for (int k = 0; k < J::nv; ++k, ++i) {
+            const double d = r.q[k] - q[i];
+            phi[i] = cut_coordinate_is_angle<J>(k) ? std::remainder(d, 2 * std::numbers::pi) : d;
+            std::array<double, S::n_v> row{};
+            add_frame_jacobian<S, CI::link_a>(motions, ls.pose, r.rows[k].wa, r.rows[k].va, a.r, row.data());
+            add_frame_jacobian<S, CI::link_b>(motions, ls.pose, r.rows[k].wb, r.rows[k].vb, b.r, row.data());
+            for (int j = 0; j < S::n_v; ++j) g(i, j) = row[j];
+          }
+        }(),
+        ...);
+  }
+};
+
 /// Moves (q, v) onto the loops' constraints, changing only the rates i with
-/// free[i] (and their joints' coordinates): Newton steps on Φ(q) = 0, each
-/// the least change Δv = G_fᵀ·(G_f·G_fᵀ)⁺·(−Φ) applied through the joints'
-/// q̇ (and normalize), until |Φ| stops shrinking or is at round-off; then
-/// v ← v + G_fᵀ·(G_f·G_fᵀ)⁺·(−G·v). Reports what is left; the caller judges it.
-template <class S>
+/// free[i] (and their joints' coordinates) and holding the cut joints in
+/// held: Newton steps on Φ(q) = 0 (with held's rows), each the least change
+/// Δv = G_fᵀ·(G_f·G_fᵀ)⁺·(−Φ) applied through the joints' q̇ (and
+/// normalize), until |Φ| stops shrinking or is at round-off; then
+/// v ← v + G_fᵀ·(G_f·G_fᵀ)⁺·(−G·v) (held's rates as asked). Reports what is
+/// left; the caller judges it.
+template <class S, class Held = held_cuts<S>>
 closure project_onto_loops(const S& scene, double* q, double* v, const std::array<bool, S::n_v>& free,
-                           int max_iterations = 50) {
-  constexpr int n = S::n_v, m = n_constraints<S>();
+                           const Held& held = {}, int max_iterations = 50) {
+  constexpr int n = S::n_v, m = n_constraints<S>() + Held::rows;
   closure r;
   if constexpr (m > 0) {
     const double tol = 8 * std::numeric_limits<double>::epsilon() * length_scale(scene);
     std::array<double, n> zero{};
-    auto masked = [&](const loop_terms<S, double>& k) {
+    struct terms {
+      std::array<double, m> phi;
+      Eigen::Matrix<double, m, n> G;
+    };
+    // Φ and G of the loops, then held's rows.
+    auto terms_at = [&](const double* qs) {
+      terms t;
+      constexpr int mc = n_constraints<S>();
+      if constexpr (mc > 0) {
+        const auto k = loop_kinematics<S>(scene, qs, zero.data());
+        for (int i = 0; i < mc; ++i) t.phi[i] = k.phi[i];
+        t.G.template topRows<mc>() = k.G;
+      }
+      if constexpr (Held::rows > 0) {
+        auto g = t.G.template bottomRows<Held::rows>();
+        held.add(scene, qs, t.phi.data() + mc, g);
+      }
+      return t;
+    };
+    auto masked = [&](const terms& k) {
       Eigen::Matrix<double, m, n> G = k.G;
       for (int j = 0; j < n; ++j)
         if (!free[j]) G.col(j).setZero();
@@ -331,7 +388,7 @@ closure project_onto_loops(const S& scene, double* q, double* v, const std::arra
       for (double e : x) s += e * e;
       return s;
     };
-    auto k = loop_kinematics<S>(scene, q, zero.data());
+    auto k = terms_at(q);
     r.phi = worst(k.phi, &r.worst_row);
     // Newton with backtracking: a step that does not shrink |Φ| is halved
     // (far from the solution a full step can overshoot), up to 30 times.
@@ -354,7 +411,7 @@ closure project_onto_loops(const S& scene, double* q, double* v, const std::arra
           for (int i = 0; i < LI::nq; ++i) q[LI::q + i] += dq[LI::q + i];
           normalize_joint(j, q + LI::q);
         });
-        const auto kk = loop_kinematics<S>(scene, q, zero.data());
+        const auto kk = terms_at(q);
         if (norm2(kk.phi) < norm2(k.phi)) {  // the merit is |Φ|₂: Newton's step is a descent direction for it
           shrank = true;
           k = kk;
@@ -367,15 +424,16 @@ closure project_onto_loops(const S& scene, double* q, double* v, const std::arra
         break;
       }
     }
+    // G·v = 0 on the loops' rows, held's rates as asked on its.
     std::array<double, m> gv;
     for (int i = 0; i < m; ++i) {
-      gv[i] = 0;
+      gv[i] = i < n_constraints<S>() ? 0.0 : held.v[std::max(0, i - n_constraints<S>())];
       for (int j = 0; j < n; ++j) gv[i] -= k.G(i, j) * v[j];
     }
     const auto dv = least_change(masked(k), gv);
     for (int j = 0; j < n; ++j) v[j] += dv[j];
     for (int i = 0; i < m; ++i) {
-      gv[i] = 0;
+      gv[i] = i < n_constraints<S>() ? 0.0 : -held.v[std::max(0, i - n_constraints<S>())];
       for (int j = 0; j < n; ++j) gv[i] += k.G(i, j) * v[j];
     }
     r.phid = worst(gv);

@@ -136,7 +136,11 @@ set_motion<T> motion_of_set(const S& scene, const LS& ls) {
   constexpr int L = S::tree.set_link[Set];
   const link_pose<T>& p = ls.pose[L];
   const Vec3<T> o = scene.model().set_offset[Set].template cast<T>();
-  return {Mat3<T>(scene.model().set_rotation[Set].template cast<T>() * p.R),
+  auto R = [&] {  // a set that does not turn against its link (the types say so) has its link's R
+    if constexpr (set_rotation_kind<S>(Set) == -2) return p.R;
+    else return Mat3<T>(scene.model().set_rotation[Set].template cast<T>() * p.R);
+  };
+  return {R(),
           point_position(p, o),
           point_velocity(p, o),
           p.R.transpose() * p.w,
@@ -233,6 +237,66 @@ void cut_constraint(const S& scene, const set_motion<T>& a, const set_motion<T>&
   }
 }
 
+/// A cut joint's coordinates and rates as its frames give them (its
+/// cut_state: what recover reports for it), and each rate's coefficients on
+/// the two frames' motions, as a constraint row's: rate_i = wa·ω_a + va·v_a
+/// + wb·ω_b + vb·v_b (world coordinates, at the frames' origins).
+template <class J>
+struct cut_reading {
+  std::array<double, J::nq> q;
+  std::array<double, J::nv> v;
+  std::array<constraint_row<double>, J::nv> rows;
+};
+template <class J>
+cut_reading<J> read_cut(const J& joint, const set_motion<double>& a, const set_motion<double>& b) {
+  const Mat3d R = b.R * a.R.transpose();
+  const Vec3d d = b.r - a.r;
+  const Vec3d p = a.R * d, w = a.R * (b.w - a.w), pd = a.R * (b.v - a.v - a.w.cross(d));
+  cut_reading<J> r;
+  joint.cut_state(R, p, w, pd, r.q.data(), r.v.data());
+  // The rates are linear in (w, ṗ), frame_a coordinates: their coefficients
+  // from unit motions, turned into the world's (ṗ = R_a·(v_b − v_a − ω_a × d)).
+  std::array<Vec3d, J::nv> lw, lp;
+  for (int e = 0; e < 6; ++e) {
+    Vec3d we = Vec3d::Zero(), pe = Vec3d::Zero();
+    (e < 3 ? we : pe)(e % 3) = 1;
+    std::array<double, J::nq> q;
+    std::array<double, J::nv> v;
+    joint.cut_state(R, p, we, pe, q.data(), v.data());
+    for (int i = 0; i < J::nv; ++i) (e < 3 ? lw[i] : lp[i])(e % 3) = v[i];
+  }
+  for (int i = 0; i < J::nv; ++i) {
+    const Vec3d n = a.R.transpose() * lw[i], f = a.R.transpose() * lp[i];
+    auto& row = r.rows[i];
+    row.phi = r.q[i < J::nq ? i : 0];
+    row.phid = r.v[i];
+    row.bias = 0;
+    row.wa = -n - d.cross(f);
+    row.va = -f;
+    row.wb = n;
+    row.vb = f;
+  }
+  return r;
+}
+
+/// Cut K's joint as its frames place it at (q, v).
+template <class S, int K>
+auto read_cut_at(const S& scene, const double* q, const double* v) {
+  using CI = cut_info<S, K>;
+  const auto motions = link_motions<spatial_algebra, double, true>(scene, q);
+  const auto ls = loop_link_states<S, double>(motions, v);
+  return read_cut(scene.template component<CI::joint>(), motion_of_set<S, CI::set_a, double>(scene, ls),
+                  motion_of_set<S, CI::set_b, double>(scene, ls));
+}
+
+/// Whether a cut joint's coordinate i is an angle (compared the short way
+/// round): its angle_coordinate, or each coordinate of a joint that only turns.
+template <class J>
+constexpr bool cut_coordinate_is_angle(int i) {
+  if constexpr (requires { J::angle_coordinate; }) return i == J::angle_coordinate;
+  else return J::as_cut.translations == 0;
+}
+
 /// Whether link A is link L or one of its ancestors.
 template <class S>
 constexpr bool on_path(int A, int L) {
@@ -256,9 +320,11 @@ FLANGE_INLINE void add_frame_jacobian(const Motions& motions, const Poses& pose,
       // With the point's lever arm folded into the torque: n·ω + f·(v + ω × (p − r)) = (n + (p − r) × f)·ω + f·v.
       const Vec3<T> nn = P.R * (n + (p - P.r).cross(f)), ff = P.R * f;
       [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
+        // Each column's typed parts (a revolute's along one axis, no linear
+        // part) pick the components of nn and ff that are computed at all.
         ((row[LI::v + K] += [&] {
            const auto c = m.template col<K>();
-           return nn.dot(c.ang.dense()) + ff.dot(c.lin.dense());
+           return value_of<T>(dot(to_svec(nn), c.ang) + dot(to_svec(ff), c.lin));
          }()),
          ...);
       }(std::make_integer_sequence<int, LI::nv>{});

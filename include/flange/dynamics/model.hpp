@@ -96,6 +96,9 @@ struct dynamics_model {
   /// a scene without gravity.
   [[no_unique_address]] std::conditional_t<Gravity, Vec3d, no_gravity> minus_g{};
   std::array<Vec3d, NS> set_offset{};    ///< a set's origin in its link's coordinates
+  /// The scene's size: the largest |set_offset| (1 m without one), the
+  /// loops' yardstick for lengths (loop_solve.hpp).
+  double length = 1.0;
   std::array<Mat3d, NS> set_rotation{};  ///< rotates link coordinates into the set's
   std::array<rigid_inertia<double>, NL> link{};
   /// C_L = A_L·R_s of a link that computes in its joint's axis frame
@@ -280,6 +283,9 @@ auto build_model(const S& scene) {
         frame_overflows(describe_component(scene, tree.set_edge[s]), p, mass_scale);
     }
     if constexpr (axis_frames<S>::any) turn_to_axis_frames(scene, model);
+    double L = 0;
+    for (const auto& o : model.set_offset) L = std::max(L, o.norm());
+    if (L > 0) model.length = L;
     for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
       using C = std::remove_cvref_t<decltype(c)>;
       if constexpr (carries_body<C>) {

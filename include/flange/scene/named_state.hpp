@@ -41,8 +41,16 @@ template <class Name>
 struct joint_is_cut {
   static_assert(always_false<Name>,
                 "flange: this joint (the template argument) closes a loop, and the scene cut it there: it has no "
-                "coordinates in the state (its angle and rate are recovered: recover(scene, t, x).internal<\"name\", "
-                "\"phi\">(), docs/loops.md); name a joint of the loop's tree instead");
+                "coordinates in the state, where they are meant here (get_joint<\"name\">(scene, x) and recover read "
+                "it from its frames; initial_state and close_loops take it by name, docs/loops.md); name a joint of "
+                "the loop's tree instead");
+};
+template <class Name>
+struct cut_joint_cannot_be_held {
+  static_assert(always_false<Name>,
+                "flange: this joint (the template argument) closes a loop and turns by a quaternion (a cut Spherical "
+                "or FreeMotion): initial_state and close_loops cannot hold it; name a joint of the loop's tree "
+                "instead, or write another joint of the loop last so that it is cut");
 };
 template <class Name, class Valid>
 struct joint_named_twice {

@@ -149,6 +149,57 @@ struct named_joint {
   static constexpr int index = found >= 0 ? found : joint_indices<S>()[0];  // no second error after the first
   using type = typename S::template component_type<index>;
 };
+/// The component index of the joint named Name, a cut one too (−1 after
+/// one diagnostic listing the valid names).
+template <class S, fixed_string Name>
+constexpr int any_joint_named() {
+  constexpr int c = S::index_of(Name.view());
+  if constexpr (c >= 0 && S::tree.cut_of[c < 0 ? 0 : c] >= 0) return c;
+  else return joint_named<S, Name>();
+}
+/// The joint named Name in scene S, cut or not: cut is its cut's index (−1
+/// for a joint of the tree).
+template <class S, fixed_string Name>
+struct named_any_joint {
+  static constexpr int found = any_joint_named<S, Name>();
+  static constexpr int index = found >= 0 ? found : joint_indices<S>()[0];
+  static constexpr int cut = found >= 0 ? S::tree.cut_of[index] : -1;
+  using type = typename S::template component_type<index>;
+  /// Whether close_loops can hold it: a tree joint, or a cut one whose
+  /// coordinates are its rates' integrals (not a quaternion); otherwise one
+  /// diagnostic.
+  static constexpr bool holdable = [] {
+    if constexpr (cut >= 0 && type::nq != type::nv) {
+      (void)sizeof(diagnostic::cut_joint_cannot_be_held<diagnostic::member<Name>>);
+      return false;
+    } else {
+      return true;
+    }
+  }();
+};
+/// The cuts among the joints named, in the order named, as held_cuts
+/// (dynamics/loop_solve.hpp).
+template <class S, fixed_string... Names>
+struct held_cuts_of {
+  static constexpr std::array<int, sizeof...(Names)> all{
+      (named_any_joint<S, Names>::holdable ? named_any_joint<S, Names>::cut : -1)...};
+  static constexpr int count = [] {
+    int c = 0;
+    for (const int k : all) c += k >= 0;
+    return c;
+  }();
+  static constexpr std::array<int, count> cuts = [] {
+    std::array<int, count> r{};
+    int i = 0;
+    for (const int k : all)
+      if (k >= 0) r[i++] = k;
+    return r;
+  }();
+  template <std::size_t... I>
+  static auto make(std::index_sequence<I...>) -> held_cuts<S, cuts[I]...>;
+  using type = decltype(make(std::make_index_sequence<count>{}));
+};
+
 /// Whether component I is a body that joint C carries (C's link or a link
 /// beyond it).
 template <class S, int C>
@@ -208,18 +259,32 @@ void set_joint(const S& scene, State& x, const joint_state_t<typename detail::na
 /// The named joint's state in its own terms, read from x: what set_joint
 /// writes (Revolute: {.q, .v}; Spherical: {.R, .w}; FreeMotion: {.r, .v, .R,
 /// .w}, the quaternion as a rotation matrix; Universal, Cylindrical, Planar:
-/// {.q = {…}, .v = {…}}). The name is checked at compile time.
+/// {.q = {…}, .v = {…}}). The name is checked at compile time. A cut joint
+/// (one that closes a loop) reads as its frames place it, as recover gives
+/// it: its angles within (−π, π].
 template <fixed_string Name, class S, class State>
-[[nodiscard]] joint_state_t<typename detail::named_joint<S, Name>::type> get_joint(const S& scene, const State& x) {
+[[nodiscard]] joint_state_t<typename detail::named_any_joint<S, Name>::type> get_joint(const S& scene,
+                                                                                     const State& x) {
   S::require_state_size(x);
-  constexpr int C = detail::named_joint<S, Name>::index;
-  using J = typename S::template component_type<C>;
-  std::array<double, J::nq> q;
-  std::array<double, J::nv> v;
-  for (int i = 0; i < J::nq; ++i) q[i] = x[S::tree.q_offset[C] + i];
-  for (int i = 0; i < J::nv; ++i) v[i] = x[S::n_q + S::tree.v_offset[C] + i];
-  return read_joint_value(scene.template component<C>(), q.data(), v.data());
+  using N = detail::named_any_joint<S, Name>;
+  constexpr int C = N::index;
+  if constexpr (N::cut >= 0) {
+    const auto r = detail::read_cut_at<S, N::cut>(scene, x.data(), x.data() + S::n_q);
+    return read_joint_value(scene.template component<C>(), r.q.data(), r.v.data());
+  } else {
+    using J = typename S::template component_type<C>;
+    std::array<double, J::nq> q;
+    std::array<double, J::nv> v;
+    for (int i = 0; i < J::nq; ++i) q[i] = x[S::tree.q_offset[C] + i];
+    for (int i = 0; i < J::nv; ++i) v[i] = x[S::n_q + S::tree.v_offset[C] + i];
+    return read_joint_value(scene.template component<C>(), q.data(), v.data());
+  }
 }
+
+namespace detail {
+template <fixed_string... Held, class S, class State, class H>
+void close_holding(const S& scene, State& x, const H& held);
+}  // namespace detail
 
 /// The state with the named joints set and every other joint at its neutral
 /// configuration and at rest:
@@ -227,11 +292,14 @@ template <fixed_string Name, class S, class State>
 ///   auto x0 = initial_state<"shoulder", "elbow">(arm, {.q = 0.3}, {.q = -0.2, .v = 1});
 ///
 /// Each value has its joint's state type (see set_joint); the names are
-/// checked at compile time, and a name given twice is an error.
+/// checked at compile time, and a name given twice is an error. A joint
+/// that closes a loop (cut) may be named too: the loops are then closed
+/// with every named joint held at its value (close_loops), the cut ones as
+/// their frames place them.
 template <fixed_string... Names, class S>
 typename S::state_type initial_state(const S& scene,
-                                     const joint_state_t<typename detail::named_joint<S, Names>::type>&... values) {
-  constexpr std::array<int, sizeof...(Names)> idx{detail::named_joint<S, Names>::index...};
+                                     const joint_state_t<typename detail::named_any_joint<S, Names>::type>&... values) {
+  constexpr std::array<int, sizeof...(Names)> idx{detail::named_any_joint<S, Names>::index...};
   constexpr int twice = [&] {
     for (std::size_t i = 0; i < idx.size(); ++i)
       for (std::size_t j = i + 1; j < idx.size(); ++j)
@@ -243,9 +311,29 @@ typename S::state_type initial_state(const S& scene,
     (void)sizeof(diagnostic::joint_named_twice<
                  diagnostic::member<fixed_string<names[twice].size() + 1>(names[twice])>, void>);
   }
+  using State = typename S::state_type;
   auto x = neutral_state(scene);
-  (detail::write_joint<S, typename S::state_type, detail::named_joint<S, Names>::index>(scene, x, values), ...);
-  (detail::finish_joint<S, typename S::state_type, detail::named_joint<S, Names>::index>(scene, x, values), ...);
+  using H = typename detail::held_cuts_of<S, Names...>::type;
+  H held;
+  int row = 0;
+  ((void)[&] {
+    using N = detail::named_any_joint<S, Names>;
+    if constexpr (N::cut < 0) {
+      detail::write_joint<S, State, N::index>(scene, x, values);
+    } else {
+      using J = typename N::type;
+      std::array<double, J::nq> q;
+      std::array<double, J::nv> v;
+      write_joint_state(scene.template component<N::index>(), values, q.data(), v.data());
+      if constexpr (N::holdable)
+        for (int i = 0; i < J::nv; ++i, ++row) held.q[row] = q[i], held.v[row] = v[i];
+    }
+  }(), ...);
+  ((void)[&] {
+    using N = detail::named_any_joint<S, Names>;
+    if constexpr (N::cut < 0) detail::finish_joint<S, State, N::index>(scene, x, values);
+  }(), ...);
+  if constexpr (H::rows > 0) detail::close_holding<Names...>(scene, x, held);
   return x;
 }
 
@@ -284,6 +372,54 @@ double closure_tolerance(const S& scene) {
 }
 }  // namespace detail
 
+namespace detail {
+/// The cut joints among Names, quoted, for a message.
+template <class S, fixed_string... Names>
+std::string held_names() {
+  std::string r;
+  ((named_any_joint<S, Names>::cut >= 0 ? (void)(r += concat(r.empty() ? "" : ", ", "\"", Names.view(), "\"")) : void()),
+   ...);
+  return r;
+}
+
+/// close_loops with the cut joints' targets in held (held_cuts_of<S, Held...>).
+template <fixed_string... Held, class S, class State, class H>
+void close_holding(const S& scene, State& x, const H& held) {
+  std::array<bool, S::n_v> free;
+  free.fill(true);
+  ((void)[&] {
+    using N = named_any_joint<S, Held>;
+    if constexpr (N::cut < 0)
+      for (int i = 0; i < N::type::nv; ++i) free[S::tree.v_offset[N::index] + i] = false;
+  }(), ...);
+  constexpr int mc = n_constraints<S>();
+  if constexpr (mc + H::rows > 0) {
+    const auto r = project_onto_loops(scene, x.data(), x.data() + S::n_q, free, held);
+    const double tol = closure_tolerance(scene);
+    if (!(r.phi <= tol)) {
+      if (r.worst_row >= mc)
+        throw parameter_error(concat("flange: the cut joints held (", held_names<S, Held...>(),
+                                     ") cannot be placed as asked while the loops close: a coordinate stays ", r.phi,
+                                     " off after ", r.iterations,
+                                     " Newton steps (the mechanism cannot reach it, or the held joints fix it "
+                                     "otherwise); ",
+                                     describe_state(x.data(), S::n_q, x.data() + S::n_q, S::n_v)));
+      throw parameter_error(concat("flange: ", describe_loop(scene, r.worst_row),
+                                   " cannot close near the given state: its frames stay ",
+                                   loop_gap<S>(r.worst_row, r.phi), " after ", r.iterations,
+                                   " Newton steps (the links cannot meet there, or the guess is past a "
+                                   "dead point); ",
+                                   describe_state(x.data(), S::n_q, x.data() + S::n_q, S::n_v)));
+    }
+    if (!(r.phid <= tol))
+      throw parameter_error(concat("flange: the loops cannot move at the rates held (", r.phid,
+                                   " left in G·v): the held joints' rates are not a motion of the "
+                                   "mechanism, or it is at a dead point; ",
+                                   describe_state(x.data(), S::n_q, x.data() + S::n_q, S::n_v)));
+  }
+}
+}  // namespace detail
+
 /// Closes the scene's loops from the joints named (held: their coordinates
 /// and rates are kept) by changing the others as little as possible:
 ///
@@ -291,36 +427,26 @@ double closure_tolerance(const S& scene) {
 ///   close_loops<"crank_pivot">(fourbar, x);   // the coupler and rocker follow
 ///
 /// The other joints' coordinates in x are the guess; Newton's method finds
-/// the closed position nearest to it, then the rates with G·v = 0. Throws
+/// the closed position nearest to it, then the rates with G·v = 0. A cut
+/// joint named is held as x's frames place it (get_joint), as if its loop
+/// were closed there; a cut Spherical or FreeMotion cannot be held. Throws
 /// parameter_error naming the loop if it cannot close near the guess (links
 /// too short to meet, or a guess past a dead point), or if the held rates
 /// cannot be met.
 template <fixed_string... Held, class S, class State>
 void close_loops(const S& scene, State& x) {
   S::require_state_size(x);
-  std::array<bool, S::n_v> free;
-  free.fill(true);
+  using H = typename detail::held_cuts_of<S, Held...>::type;
+  H held;
+  int row = 0;
   ((void)[&] {
-    using J = typename detail::named_joint<S, Held>::type;
-    constexpr int c = detail::named_joint<S, Held>::index;
-    for (int i = 0; i < J::nv; ++i) free[S::tree.v_offset[c] + i] = false;
+    using N = detail::named_any_joint<S, Held>;
+    if constexpr (N::cut >= 0 && N::holdable) {
+      const auto r = detail::read_cut_at<S, N::cut>(scene, x.data(), x.data() + S::n_q);
+      for (int i = 0; i < N::type::nv; ++i, ++row) held.q[row] = r.q[i], held.v[row] = r.v[i];
+    }
   }(), ...);
-  if constexpr (detail::has_loops<S>) {
-    const auto r = detail::project_onto_loops(scene, x.data(), x.data() + S::n_q, free);
-    const double tol = detail::closure_tolerance(scene);
-    if (!(r.phi <= tol))
-      throw parameter_error(detail::concat("flange: ", detail::describe_loop(scene, r.worst_row),
-                                           " cannot close near the given state: its frames stay ",
-                                           detail::loop_gap<S>(r.worst_row, r.phi), " after ", r.iterations,
-                                           " Newton steps (the links cannot meet there, or the guess is past a "
-                                           "dead point); ",
-                                           detail::describe_state(x.data(), S::n_q, x.data() + S::n_q, S::n_v)));
-    if (!(r.phid <= tol))
-      throw parameter_error(detail::concat("flange: the loops cannot move at the rates held (", r.phid,
-                                           " left in G·v): the held joints' rates are not a motion of the "
-                                           "mechanism, or it is at a dead point; ",
-                                           detail::describe_state(x.data(), S::n_q, x.data() + S::n_q, S::n_v)));
-  }
+  detail::close_holding<Held...>(scene, x, held);
 }
 
 /// The number of constraint rows of scene type S's loops (0 without loops):
