@@ -315,7 +315,7 @@ typename S::state_type initial_state(const S& scene,
   auto x = neutral_state(scene);
   using H = typename detail::held_cuts_of<S, Names...>::type;
   H held;
-  int row = 0;
+  [[maybe_unused]] int row = 0;  // (unused when no cut joint is named)
   ((void)[&] {
     using N = detail::named_any_joint<S, Names>;
     if constexpr (N::cut < 0) {
@@ -438,7 +438,7 @@ void close_loops(const S& scene, State& x) {
   S::require_state_size(x);
   using H = typename detail::held_cuts_of<S, Held...>::type;
   H held;
-  int row = 0;
+  [[maybe_unused]] int row = 0;  // (unused when no cut joint is named)
   ((void)[&] {
     using N = detail::named_any_joint<S, Held>;
     if constexpr (N::cut >= 0 && N::holdable) {
