@@ -106,6 +106,10 @@ int solve_semidefinite(Eigen::Matrix<T, M, M>& A, const T* b, T* x) {
 /// 78 flat positions, and the regular four-bar's energy.
 inline constexpr double constraint_damping = 3e-3;
 inline constexpr int constraint_sweeps = 4;
+/// The sweeps are skipped, for one undamped triangular solve, where every
+/// direction's damping leaves out at most this fraction of it (R_jj ≥
+/// 100·μ·‖B_c‖): four sweeps would reach that solve to (1e-4)⁴ = 1e-16.
+inline constexpr double constraint_sweep_skip = 1e-4;
 
 /// A row of B repeats the rows before it (the constraints are redundant:
 /// Bricard's linkage, a planar loop written with run-time axes, the
@@ -231,20 +235,41 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
     for (int kk = i + 1; kk < n; ++kk) x += Mf(kk, i) * y[kk];
     z0[i] = x / s[i];
   }
-  std::array<T, m> u{}, res, du;
-  for (int sweep = 0; sweep < constraint_sweeps; ++sweep) {
-    for (int j = 0; j < rank; ++j) {  // res = (Pᵀ·γ)₁ − R₁₁ᵀ·u
+  // Each direction's damped reciprocal R_jj / (R_jj² + μ²·‖B_c‖²), and how
+  // much of R_jj the damping leaves out, e_j = μ²·‖B_c‖² / (R_jj² + μ²·‖B_c‖²):
+  // a sweep shrinks direction j's error by about e_j.
+  std::array<T, m> u{}, inv;
+  T e_max(0);
+  for (int j = 0; j < rank; ++j) {
+    const T rjj = R[j][p[j]], mu2 = T(constraint_damping * constraint_damping) * own[p[j]];
+    const T den = T(1) / (rjj * rjj + mu2);
+    inv[j] = rjj * den;
+    const T e = mu2 * den;
+    if (e > e_max) e_max = e;
+  }
+  if (e_max <= T(constraint_sweep_skip)) {
+    // Away from singular positions the sweeps converge to R₁₁ᵀ·u = (Pᵀ·γ)₁
+    // within round-off (e_max⁴ ≤ 1e-16): solve it once, undamped.
+    for (int j = 0; j < rank; ++j) {
       T x = gamma[p[j]];
-      for (int i = 0; i <= j; ++i) x -= R[i][p[j]] * u[i];
-      res[j] = x;
+      for (int i = 0; i < j; ++i) x -= R[i][p[j]] * u[i];
+      u[j] = x / R[j][p[j]];
     }
-    for (int j = 0; j < rank; ++j) {  // R₁₁ᵀ·du = res, each division damped
-      T x = res[j];
-      for (int i = 0; i < j; ++i) x -= R[i][p[j]] * du[i];
-      const T rjj = R[j][p[j]];
-      du[j] = x * rjj / (rjj * rjj + T(constraint_damping * constraint_damping) * own[p[j]]);
+  } else {
+    std::array<T, m> res, du;
+    for (int sweep = 0; sweep < constraint_sweeps; ++sweep) {
+      for (int j = 0; j < rank; ++j) {  // res = (Pᵀ·γ)₁ − R₁₁ᵀ·u
+        T x = gamma[p[j]];
+        for (int i = 0; i <= j; ++i) x -= R[i][p[j]] * u[i];
+        res[j] = x;
+      }
+      for (int j = 0; j < rank; ++j) {  // R₁₁ᵀ·du = res, each division damped
+        T x = res[j];
+        for (int i = 0; i < j; ++i) x -= R[i][p[j]] * du[i];
+        du[j] = x * inv[j];
+      }
+      for (int j = 0; j < rank; ++j) u[j] += du[j];
     }
-    for (int j = 0; j < rank; ++j) u[j] += du[j];
   }
   std::array<T, n> dz;
   std::array<T, m> w;
