@@ -14,6 +14,7 @@
 #include <flange/flange.hpp>
 #include <flange/models/linkages.hpp>
 
+#include "loop_laws.hpp"
 #include "loop_links.hpp"
 
 using namespace flange;
@@ -280,4 +281,22 @@ TEST_CASE("A cut joint is read, set and held by name as a tree joint is") {
   // A slide the coupler cannot reach while the loop closes.
   CHECK_THROWS_WITH((initial_state<"j">(cut_c, {.q = {3.0, 0.0}})),
                     Catch::Contains("cut joints held (\"j\") cannot be placed as asked"));
+}
+
+TEST_CASE("the loop laws hold on loops cut at a Universal, a Cylindrical, a Planar joint and a Spherical") {
+  std::mt19937 rng(52);
+  test::loop_law_errors e;
+  const auto u = Universal<"j">({.n_a = {0, 0, 1}, .n_b = {1, 0, 0}});
+  const auto c = Cylindrical<"j">({.n = {1, 0, 0}});
+  const auto p = Planar<"j">({.n = {1, 0, 0}, .n_x = {0, 1, 0}});
+  test::check_loop_laws(four_bar(Spherical<"s">{}, u), rng, e);
+  test::check_loop_laws(four_bar(Spherical<"s">{}, c), rng, e);
+  test::check_loop_laws(four_bar(u, Spherical<"s">{}), rng, e);
+  test::check_loop_laws(planar_slider(Spherical<"s">{}, p), rng, e);
+  test::check_loop_laws(planar_slider(p, Spherical<"s">{}), rng, e);
+  CHECK(e.checked == 50);
+  CHECK(e.algorithms < 1e-10);
+  CHECK(e.accelerations < 1e-10);
+  CHECK(e.power < 1e-10);
+  CHECK(e.residual < 1e-12);
 }

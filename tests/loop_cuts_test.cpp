@@ -11,6 +11,8 @@
 #include <flange/flange.hpp>
 #include <flange/models/linkages.hpp>
 
+#include "loop_laws.hpp"
+
 using namespace flange;
 
 namespace {
@@ -196,15 +198,22 @@ TEST_CASE("a four-bar whose coupler has no mass runs and moves as the four-bar w
   CHECK(std::abs(recover(fb, 2.0, tf.x.back()).energy() - recover(fb, 0.0, tf.x.front()).energy()) < 1e-9);
 }
 
-TEST_CASE("a loop whose last-written joint is driven is cut at another joint") {
+namespace {
+/// models::fourbar's bars, its rocker pivot (written last) driven by a
+/// motor of constant torque 1 N m.
+auto driven_fourbar(const models::fourbar_params& p) {
   using models::bar;
-  // models::fourbar's bars, its rocker pivot (written last) driven by a motor.
+  return fourbar_of(World<"world">({.g = p.g}), Revolute<"crank_pivot", axis::z>{}, bar<"crank">(p.crank, p.m_crank),
+                    Revolute<"crank_pin", axis::z>{}, bar<"coupler">(p.coupler, p.m_coupler),
+                    Revolute<"rocker_pin", axis::z>{}, bar<"rocker">(p.rocker, p.m_rocker),
+                    FixedTranslation<"ground">({.d = Vec3d(p.ground, 0, 0)}),
+                    revolute<"rocker_pivot", axis::z>([](auto t) { return 0.0 * t + 1.0; }));
+}
+}  // namespace
+
+TEST_CASE("a loop whose last-written joint is driven is cut at another joint") {
   const models::fourbar_params p;
-  auto fb = fourbar_of(World<"world">({.g = p.g}), Revolute<"crank_pivot", axis::z>{}, bar<"crank">(p.crank, p.m_crank),
-                       Revolute<"crank_pin", axis::z>{}, bar<"coupler">(p.coupler, p.m_coupler),
-                       Revolute<"rocker_pin", axis::z>{}, bar<"rocker">(p.rocker, p.m_rocker),
-                       FixedTranslation<"ground">({.d = Vec3d(p.ground, 0, 0)}),
-                       revolute<"rocker_pivot", axis::z>([](auto t) { return 0.0 * t + 1.0; }));
+  auto fb = driven_fourbar(p);
   using S = decltype(fb);
   STATIC_REQUIRE(cut_name<S>() == "rocker_pin");  // of the joints that can be cut, the one written last
   STATIC_REQUIRE(S::tree.cut_of[S::index_of("rocker_pivot")] < 0);
@@ -251,4 +260,21 @@ TEST_CASE("the planar four-bar cut at each of its joints moves as the one cut at
                                                                        {.q = phi[3]});
   close_loops<"crank_pivot">(f1, x1);
   CHECK(largest_gap(ref, tr, f1, simulate(f1, x1, times, o), frames) < 1e-9);
+}
+
+TEST_CASE("the loop laws hold on Fourbar1 in three writing orders, the massless coupler and the driven four-bar") {
+  // The driven four-bar's motor is in the power balance as a joint force.
+  std::mt19937 rng(52);
+  test::loop_law_errors e;
+  const models::fourbar_params p;
+  test::check_loop_laws(fourbar1<0>(), rng, e);
+  test::check_loop_laws(fourbar1<1>(), rng, e);
+  test::check_loop_laws(fourbar1<2>(), rng, e);
+  test::check_loop_laws(fourbar_massless_coupler(p), rng, e);
+  test::check_loop_laws(driven_fourbar(p), rng, e);
+  CHECK(e.checked == 50);
+  CHECK(e.algorithms < 1e-10);
+  CHECK(e.accelerations < 1e-10);
+  CHECK(e.power < 1e-10);
+  CHECK(e.residual < 1e-12);
 }

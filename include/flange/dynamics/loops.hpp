@@ -289,6 +289,47 @@ auto read_cut_at(const S& scene, const double* q, const double* v) {
                   motion_of_set<S, CI::set_b, double>(scene, ls));
 }
 
+/// How cut K's frames keep the axes its rotation rows lock. The rows ask
+/// an axis of frame b to stay normal to two axes of frame a (or the axes'
+/// cross terms to vanish), which frame b turned half a turn also meets: the
+/// joint's axis reversed, another mechanism. The smallest cosine between a
+/// locked axis in frame a and the same axis in frame b: 1 closed as the
+/// joint is, −1 turned over; 1 where no rotation is locked (or a
+/// Universal's, whose row keeps an angle, not an axis).
+template <class S, int K>
+double cut_alignment(const S& scene, const set_motion<double>& a, const set_motion<double>& b) {
+  using CI = cut_info<S, K>;
+  const auto& joint = scene.template component<CI::joint>();
+  auto cosine = [&](const Vec3d& e) { return (a.R.transpose() * e).dot(b.R.transpose() * e); };
+  if constexpr (CI::rotation_rows == 0 || CI::freedom.rotations == 2) {
+    return 1.0;
+  } else if constexpr (CI::freedom.rotations == 1) {
+    return cosine(joint.n());
+  } else if constexpr (CI::plane >= 0) {
+    return cosine(Vec3d::Unit((CI::plane + 1) % 3));
+  } else {
+    return std::min({cosine(Vec3d::UnitX()), cosine(Vec3d::UnitY()), cosine(Vec3d::UnitZ())});
+  }
+}
+
+/// The first cut whose frames are turned over at q (cut_alignment below 0), or −1.
+template <class S>
+int turned_over_cut(const S& scene, const double* q) {
+  std::array<double, S::n_v> zero{};
+  const auto motions = link_motions<spatial_algebra, double, true>(scene, q);
+  const auto ls = loop_link_states<S, double>(motions, zero.data());
+  int found = -1;
+  for_cuts<S>([&](auto k) {
+    constexpr int K = decltype(k)::value;
+    using CI = cut_info<S, K>;
+    if constexpr (CI::rotation_rows > 0)
+      if (found < 0 && !(cut_alignment<S, K>(scene, motion_of_set<S, CI::set_a, double>(scene, ls),
+                                             motion_of_set<S, CI::set_b, double>(scene, ls)) > 0))
+        found = K;
+  });
+  return found;
+}
+
 /// Whether a cut joint's coordinate i is an angle (compared the short way
 /// round): its angle_coordinate, or each coordinate of a joint that only turns.
 template <class J>

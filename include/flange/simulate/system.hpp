@@ -365,6 +365,18 @@ std::string loop_gap(int row, double phi) {
   });
   return translation ? concat(phi, " m apart") : concat(phi, " rad out of line");
 }
+/// Throws parameter_error if a loop of the state is closed with its cut
+/// joint turned over (cut_alignment, loops.hpp): its frames meet the rows
+/// with the joint's axis reversed, which is not the mechanism written.
+template <class S>
+void check_not_turned_over(const S& scene, const double* q, const double* v, const char* advice) {
+  if (const int k = turned_over_cut(scene, q); k >= 0)
+    throw parameter_error(concat("flange: the state closes the loop closed by ",
+                                 describe_component(scene, S::tree.cuts[k]),
+                                 " only with that joint turned over (its frame_b half a turn from where the joint "
+                                 "can put it: its axis reversed); ",
+                                 advice, "; ", describe_state(q, S::n_q, v, S::n_v)));
+}
 /// The largest |Φ| a state may have and still be taken as closed.
 template <class S>
 double closure_tolerance(const S& scene) {
@@ -411,6 +423,8 @@ void close_holding(const S& scene, State& x, const H& held) {
                                    "dead point); ",
                                    describe_state(x.data(), S::n_q, x.data() + S::n_q, S::n_v)));
     }
+    check_not_turned_over(scene, x.data(), x.data() + S::n_q,
+                          "Newton's method found that assembly nearest the guess: give a guess nearer the one meant");
     if (!(r.phid <= tol))
       throw parameter_error(concat("flange: the loops cannot move at the rates held (", r.phid,
                                    " left in G·v): the held joints' rates are not a motion of the "
@@ -546,6 +560,9 @@ void check_loops(const S& scene, const State& x) {
             "flange: the state leaves ", detail::describe_loop(scene, i), " open: its frames are ",
             detail::loop_gap<S>(i, std::abs(k.phi[i])), "; set the independent joints and call close_loops<…>(scene, x); ",
             detail::describe_state(x.data(), S::n_q, x.data() + S::n_q, S::n_v)));
+    detail::check_not_turned_over(scene, x.data(), x.data() + S::n_q,
+                                  "set the independent joints and call close_loops<…>(scene, x) from a guess near the "
+                                  "assembly meant");
   } else {
     (void)scene;
     (void)x;
