@@ -39,11 +39,9 @@ struct andrews_params {
   double u = 4e-2, ua = 1228e-5, ub = 449e-5, zf = 2e-2, zt = 4e-2, fa = 1421e-5, mom = 33e-3;
 };
 
-/// The joints in the test set's order of its coordinates.
-inline constexpr std::array<const char*, 7> andrews_joints{"beta", "theta", "gamma", "phi", "delta", "omega", "epsilon"};
-
 /// The test set's initial angles (at rest) and its reference solution at
-/// t = 0.03: angles and rates (y1…y14), in andrews_joints' order.
+/// t = 0.03: angles and rates (y1…y14), in the test set's order β, Θ, γ, Φ, δ, Ω, ε
+/// (the joints beta, theta, gamma, phi, delta, omega, epsilon).
 inline constexpr std::array<double, 7> andrews_q0{-0.0617138900142764496358948458001, 0,
                                                   0.455279819163070380255912382449,  0.222668390165885884674473185609,
                                                   0.487364979543842550225598953530,  -0.222668390165885884674473185609,
