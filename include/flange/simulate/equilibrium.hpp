@@ -32,7 +32,8 @@ struct equilibrium_options {
 };
 
 namespace detail {
-/// "the rate of joint "j"" or "the acceleration of joint "j"" for entry i of ẋ.
+/// Entry i of ẋ in words: "q̇[i], joint "j"'s coordinate k's rate" or
+/// "v̇[i], joint "j"'s rate k's derivative".
 template <class S>
 std::string state_entry_name(int i) {
   if (i >= S::n_q) {
