@@ -154,6 +154,7 @@ void study(const std::string& name, const std::string& xml, const peer::referenc
       if (!(e <= 1)) continue;  // diverged: left out, as flange's runs are
       const double sec = peer::median_seconds(run, quick ? 3 : 5, quick ? 5e-4 : 3e-3) / ref.T;
       peer::print_row(name, in.name, "dt", ref.T / n, e, sec, n * in.evals_per_step, n, 0);
+      if (peer::quick_sweep_done(quick, n * in.evals_per_step)) break;
     }
   }
   mj_deleteData(d);

@@ -181,6 +181,7 @@ void study(const std::string& name, const peer::reference& ref, bool quick) {
       if (!(err <= 1)) continue;
       const double sec = peer::median_seconds(run, quick ? 3 : 5, quick ? 5e-4 : 3e-3) / ref.T;
       peer::print_row(name, k.name, "tol", tol, err, sec, evals, steps, rejected);
+      if (peer::quick_sweep_done(quick, evals)) break;
     }
   }
 }
