@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sanitizers and fuzzing, as CI runs them (docs/sanitizers.md, docs/fuzzing.md):
+# Sanitizers and fuzzing, as CI runs them (docs/fuzzing.md):
 #   1. AddressSanitizer + UndefinedBehaviorSanitizer (clang 14, -O1, line
 #      tables, every check on but null and pointer-overflow (below), none
 #      recovered from) over the unit-test programs listed below,
@@ -60,37 +60,46 @@ asan_flags="-fsanitize=address,undefined -fno-sanitize=null,pointer-overflow -fn
 asan_targets=()
 asan_t0=0
 
-run_asan_build() {
-  asan_t0=$(date +%s)
+configure_asan() {
   local dir=$out/asan
   # The programs build as one target, selected_tests (tests/CMakeLists.txt),
   # so that two compile at a time: `--target a b …` builds them one by one.
   local selection
   selection=$(IFS=';'; echo "${asan_tests[*]}")
   configure "$dir" "$asan_flags" -DFLANGE_TEST_SELECTION="$selection"
-  say "ASan + UBSan: building ${#asan_tests[@]} test programs with $cxx"
   local known t
   known=$(cmake --build "$dir" --target help)
   for t in "${asan_tests[@]}"; do
     if grep -q "\.\.\. $t\$" <<<"$known"; then asan_targets+=("$t"); else say "ASan + UBSan: $t is not configured here (oneTBB missing?), left out"; fi
   done
+}
+
+run_asan_build() {
+  asan_t0=$(date +%s)
+  configure_asan
+  say "ASan + UBSan: building ${#asan_targets[@]} test programs with $cxx"
+  local dir=$out/asan
   cmake --build "$dir" -j"$jobs" --target selected_tests >"$dir/build.log" 2>&1 || { tail -50 "$dir/build.log"; exit 1; }
   say "ASan + UBSan: built in $(elapsed "$asan_t0")"
 }
 
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:halt_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:second_deadlock_stack=1}
+
+run_asan_test() {  # one program; 1 on a finding
+  local dir=$out/asan t=$1
+  if ! "$dir/tests/$t" >"$dir/$t.log" 2>&1; then
+    tail -60 "$dir/$t.log"
+    say "ASan + UBSan: $t FAILED (log: $dir/$t.log)"
+    return 1
+  fi
+  say "ASan + UBSan: $t passed ($(grep -Eo '[0-9]+ assertions? in [0-9]+ test cases?' "$dir/$t.log" | tail -1))"
+}
+
 run_asan_tests() {
-  local dir=$out/asan t
-  local t1; t1=$(date +%s)
-  export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:halt_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1}
-  export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-  for t in "${asan_targets[@]}"; do
-    if ! "$dir/tests/$t" >"$dir/$t.log" 2>&1; then
-      tail -60 "$dir/$t.log"
-      say "ASan + UBSan: $t FAILED (log: $dir/$t.log)"
-      exit 1
-    fi
-    say "ASan + UBSan: $t passed ($(grep -Eo '[0-9]+ assertions? in [0-9]+ test cases?' "$dir/$t.log" | tail -1))"
-  done
+  local t t1; t1=$(date +%s)
+  for t in "${asan_targets[@]}"; do run_asan_test "$t" || exit 1; done
   say "ASan + UBSan: ${#asan_targets[@]} programs passed, no finding (tests ran in $(elapsed "$t1"), in all $(elapsed "$asan_t0"))"
 }
 
@@ -99,19 +108,20 @@ run_asan() { run_asan_build; run_asan_tests; }
 # ThreadSanitizer's program is one translation unit, so its build keeps one
 # core busy; in a whole run it builds while the ASan programs, one process at
 # a time, run on the other core (build_tsan &, then test_tsan).
+configure_tsan() { configure "$out/tsan" "-fsanitize=thread"; }
+
 build_tsan() {
   local dir=$out/tsan
-  configure "$dir" "-fsanitize=thread"
+  configure_tsan
   cmake --build "$dir" -j"$jobs" --target thread_safety_test >"$dir/build.log" 2>&1 || { tail -50 "$dir/build.log"; return 1; }
 }
 
-test_tsan() {  # t0
+test_tsan() {  # t0; 1 on a finding
   local dir=$out/tsan
-  export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:second_deadlock_stack=1}
   if ! "$dir/tests/thread_safety_test" >"$dir/thread_safety_test.log" 2>&1; then
     tail -80 "$dir/thread_safety_test.log"
     say "ThreadSanitizer: thread_safety_test FAILED"
-    exit 1
+    return 1
   fi
   say "ThreadSanitizer: thread_safety_test passed, no data race ($(elapsed "$1"))"
 }
@@ -119,15 +129,22 @@ test_tsan() {  # t0
 run_tsan() {
   local t0; t0=$(date +%s)
   build_tsan || exit 1
-  test_tsan "$t0"
+  test_tsan "$t0" || exit 1
 }
+
+configure_fuzz() { configure "$out/fuzz" "" -DFLANGE_BUILD_TESTS=OFF -DFLANGE_BUILD_FUZZERS=ON; }
 
 run_fuzz() {
   local t0; t0=$(date +%s)
   local dir=$out/fuzz
-  configure "$dir" "" -DFLANGE_BUILD_TESTS=OFF -DFLANGE_BUILD_FUZZERS=ON
+  configure_fuzz
   cmake --build "$dir" -j"$jobs" --target fuzzers >"$dir/build.log" 2>&1 || { tail -50 "$dir/build.log"; exit 1; }
   say "fuzz: built in $(elapsed "$t0")"
+  run_fuzz_targets
+}
+
+run_fuzz_targets() {
+  local dir=$out/fuzz
   # The two targets run side by side, one core each (libFuzzer runs one
   # process): the same seconds of fuzzing each, in half the wall time.
   local f pids=() targets=(scenes urdf)
@@ -154,26 +171,62 @@ run_fuzz() {
   ((failed == 0)) || exit 1
 }
 
-kill_tree() {  # pid: the process and everything it started
-  local c
-  for c in $(pgrep -P "$1" || true); do kill_tree "$c"; done
-  kill "$1" 2>/dev/null || true
+# Everything at once (CI): the three builds under one make jobserver, so
+# that two compilers run until the last unit of all three is done (built one
+# after the other, each build ended on one core while the other idled); then
+# the ASan programs and TSan's, two at a time; then the fuzz targets side by
+# side. The makefiles are CMake's (`make -C dir target`), each build's output
+# in its build.log.
+build_all() {
+  local t0; t0=$(date +%s)
+  configure_asan
+  configure_tsan
+  configure_fuzz
+  say "building ${#asan_targets[@]} ASan + UBSan test programs, the TSan program and the fuzz targets with $cxx"
+  local mk=$out/all.mk
+  {
+    printf 'all: asan tsan fuzz\n'
+    printf 'asan:\n\t+$(MAKE) --no-print-directory -C %s selected_tests >%s/build.log 2>&1\n' "$out/asan" "$out/asan"
+    printf 'tsan:\n\t+$(MAKE) --no-print-directory -C %s thread_safety_test >%s/build.log 2>&1\n' "$out/tsan" "$out/tsan"
+    printf 'fuzz:\n\t+$(MAKE) --no-print-directory -C %s fuzzers >%s/build.log 2>&1\n' "$out/fuzz" "$out/fuzz"
+    printf '.PHONY: all asan tsan fuzz\n'
+  } >"$mk"
+  if ! make -j"$jobs" -k -f "$mk" >"$out/all.log" 2>&1; then
+    local d
+    for d in asan tsan fuzz; do
+      if grep -q -E "error|Error" "$out/$d/build.log"; then tail -50 "$out/$d/build.log"; fi
+    done
+    say "the sanitizer builds failed (logs: $out/{asan,tsan,fuzz}/build.log)"
+    exit 1
+  fi
+  say "built in $(elapsed "$t0")"
+}
+
+run_checks_in_pairs() {  # the ASan programs and TSan's, $jobs at a time
+  local t0; t0=$(date +%s)
+  local name running=0 failed=0
+  for name in "${asan_targets[@]}" tsan; do
+    if ((running >= jobs)); then
+      wait -n || failed=1
+      running=$((running - 1))
+    fi
+    if [[ $name == tsan ]]; then test_tsan "$t0" & else run_asan_test "$name" & fi
+    running=$((running + 1))
+  done
+  while ((running > 0)); do
+    wait -n || failed=1
+    running=$((running - 1))
+  done
+  ((failed == 0)) || { say "a sanitizer found something (above)"; exit 1; }
+  say "ASan + UBSan: ${#asan_targets[@]} programs passed, and TSan's, no finding ($(elapsed "$t0"))"
 }
 
 case $parts in
   all)
-    # ASan's build first (two programs at a time); then TSan's one-unit build
-    # beside the ASan runs, which use one core.
-    run_asan_build
-    t_tsan=$(date +%s)
-    build_tsan >"$out/tsan-build.out" 2>&1 &
-    tsan_pid=$!
-    trap 'kill_tree "$tsan_pid"' EXIT  # an ASan failure leaves no compiler running
-    run_asan_tests
-    wait "$tsan_pid" || { cat "$out/tsan-build.out"; say "ThreadSanitizer: the build failed"; exit 1; }
-    trap - EXIT
-    test_tsan "$t_tsan"
-    run_fuzz ;;
+    mkdir -p "$out"
+    build_all
+    run_checks_in_pairs
+    run_fuzz_targets ;;
   asan) run_asan ;;
   tsan) run_tsan ;;
   fuzz) run_fuzz ;;
