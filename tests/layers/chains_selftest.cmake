@@ -13,7 +13,7 @@ string(REPLACE ";" "," chain "${chains}")
 execute_process(COMMAND ${CMAKE_COMMAND} -DCXX=${CXX} -DINCLUDES=-I${root} -DROOT=${root} -DHEADERS=${chain} -DPYTHON=${PYTHON}
                         -DCHAINS=${CHAINS} -P ${CMAKE_CURRENT_LIST_DIR}/header.cmake
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(rc EQUAL 0 OR NOT "${out}${err}" MATCHES "lacks\\.hpp:[0-9]+:[0-9]+: error:")
+if(rc EQUAL 0 OR NOT "${out}${err}" MATCHES "lacks\\.hpp:[0-9]+:[0-9]+:[ \n]*error:")
   message(FATAL_ERROR "the chain's compilation did not refuse lacks.hpp:\n${out}${err}")
 endif()
 execute_process(COMMAND ${CMAKE_COMMAND} -DCXX=${CXX} -DINCLUDES=-I${root} -DROOT=${root} -DHEADERS=flange/top.hpp -P ${CMAKE_CURRENT_LIST_DIR}/header.cmake
