@@ -105,9 +105,9 @@ run_asan_tests() {
 
 run_asan() { run_asan_build; run_asan_tests; }
 
-# ThreadSanitizer's program is one translation unit, so its build keeps one
-# core busy; in a whole run it builds while the ASan programs, one process at
-# a time, run on the other core (build_tsan &, then test_tsan).
+# ThreadSanitizer's program is one translation unit; in a whole run it builds
+# with the others (build_all) and runs beside the ASan programs
+# (run_checks_in_pairs).
 configure_tsan() { configure "$out/tsan" "-fsanitize=thread"; }
 
 build_tsan() {
