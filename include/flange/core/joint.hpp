@@ -42,6 +42,10 @@
 //                                loop (cut_freedom below; without it, it
 //                                cannot be cut), and its coordinates and rates
 //                                from its frames' relative pose and motion
+//   angles = {…}                 which coordinates are angles (the same pose
+//                                at q_k and q_k + 2π), std::array<bool, nq>;
+//                                without it, its angle_coordinate (below) if
+//                                it has one (periodic_coordinates)
 //
 // scene/joint_check.hpp turns a missing member into one static_assert naming
 // the joint and the member.
@@ -206,6 +210,21 @@ concept angle_joint = requires(const J& j, const double* q, const cos_sin<double
   requires J::angle_coordinate >= 0 && J::angle_coordinate < J::nq;
   j.template motion<double, 1>(q, a);
 };
+
+/// Which of a joint's coordinates are angles, each giving the same pose at
+/// q_k and q_k + 2π: its own `angles` if it declares them, else its
+/// angle_coordinate, else none. A cut joint's angles are read from its frames
+/// within (−π, π]; get_joint unwraps them along a run with these.
+template <class J>
+constexpr std::array<bool, J::nq> periodic_coordinates() {
+  if constexpr (requires { J::angles; }) {
+    return J::angles;
+  } else {
+    std::array<bool, J::nq> a{};
+    if constexpr (angle_joint<J>) a[J::angle_coordinate] = true;
+    return a;
+  }
+}
 
 template <class J>
 concept axis_framed_joint = angle_joint<J> && requires(const J& j, const double* q, const cos_sin<double>& a) {

@@ -113,6 +113,7 @@ class Universal {
 
   // ---------------------------------------------------------- motion
   static constexpr int nq = 2, nv = 2;
+  static constexpr std::array<bool, 2> angles{true, true};  ///< φ₁ and φ₂ (core/joint.hpp)
   static constexpr bool reversible = true;
   static constexpr int planar_normal() { return -1; }
   static constexpr bool moves_in_plane(int) { return false; }

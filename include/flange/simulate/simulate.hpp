@@ -36,6 +36,7 @@
 #include "flange/simulate/integrate.hpp"
 #include "flange/simulate/method.hpp"
 #include "flange/simulate/options.hpp"
+#include "flange/simulate/system.hpp"
 
 namespace flange {
 
@@ -149,6 +150,41 @@ struct trajectory {
   long rhs_evals = 0;     ///< derivative evaluations (a Jacobian's own not counted)
   [[nodiscard]] std::size_t size() const { return t.size(); }
 };
+
+/// The named joint's state at each of a run's times (get_joint), a cut
+/// joint's angles unwrapped along the run: the first as its frames place it,
+/// within (−π, π], each next one within half a turn of the one before
+/// carried forward by the mean of the two samples' rates. It stays
+/// continuous while the rate's change between two samples, times the
+/// interval, stays under a turn. A tree joint's angles are state
+/// coordinates, continuous already.
+template <fixed_string Name, class S, class State>
+[[nodiscard]] std::vector<joint_state_t<typename detail::named_any_joint<S, Name>::type>> get_joint(
+    const S& scene, const trajectory<State>& tr) {
+  using N = detail::named_any_joint<S, Name>;
+  std::vector<joint_state_t<typename N::type>> out;
+  out.reserve(tr.size());
+  if constexpr (N::cut >= 0) {
+    using J = typename N::type;
+    const auto& joint = scene.template component<N::index>();
+    std::array<double, J::nq> q_before{}, qd_before{}, guess{}, qd{};
+    for (std::size_t k = 0; k < tr.size(); ++k) {
+      S::require_state_size(tr.x[k]);
+      auto r = detail::read_cut_at<S, N::cut>(scene, tr.x[k].data(), tr.x[k].data() + S::n_q);
+      joint.qdot(r.q.data(), r.v.data(), qd.data());  // an angle's rate does not depend on its turn
+      if (k > 0) {
+        for (int i = 0; i < J::nq; ++i) guess[i] = q_before[i] + 0.5 * (qd_before[i] + qd[i]) * (tr.t[k] - tr.t[k - 1]);
+        detail::unwrap_angles<J>(r.q.data(), guess.data());
+      }
+      q_before = r.q;
+      qd_before = qd;
+      out.push_back(read_joint_value(joint, r.q.data(), r.v.data()));
+    }
+  } else {
+    for (const auto& x : tr.x) out.push_back(get_joint<Name>(scene, x));
+  }
+  return out;
+}
 
 /// Times from t0 to t1 every dt: t0 + k·dt while before t1, and t1 itself
 /// (a last interval shorter than dt, never one shorter than 1e-9·dt).

@@ -14,6 +14,7 @@
 #include <array>
 #include <string_view>
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include "flange/dynamics/algorithm.hpp"
@@ -278,6 +279,44 @@ template <fixed_string Name, class S, class State>
     for (int i = 0; i < J::nq; ++i) q[i] = x[S::tree.q_offset[C] + i];
     for (int i = 0; i < J::nv; ++i) v[i] = x[S::n_q + S::tree.v_offset[C] + i];
     return read_joint_value(scene.template component<C>(), q.data(), v.data());
+  }
+}
+
+namespace detail {
+/// q[k] + 2π·m for the integer m that brings it nearest to guess[k], for
+/// each angle k of joint J (periodic_coordinates); other coordinates as they are.
+template <class J>
+void unwrap_angles(double* q, const double* guess) {
+  constexpr auto angles = periodic_coordinates<J>();
+  constexpr double turn = 2 * std::numbers::pi;
+  for (int k = 0; k < J::nq; ++k)
+    if (angles[k]) q[k] += turn * std::round((guess[k] - q[k]) / turn);
+}
+}  // namespace detail
+
+/// get_joint, with a cut joint's angles (periodic_coordinates: a Revolute's
+/// φ, a Universal's φ₁ and φ₂, a Cylindrical's or Planar's turn) taken
+/// within half a turn of near's: along a run, give the reading of the sample
+/// before, and the angle is continuous wherever the joint turns less than
+/// half a turn between the two samples (get_joint of a trajectory,
+/// simulate/simulate.hpp, does this with the rates). A tree joint's angles
+/// are state coordinates, continuous already: it reads as get_joint.
+template <fixed_string Name, class S, class State>
+[[nodiscard]] joint_state_t<typename detail::named_any_joint<S, Name>::type> get_joint(
+    const S& scene, const State& x, const joint_state_t<typename detail::named_any_joint<S, Name>::type>& near) {
+  using N = detail::named_any_joint<S, Name>;
+  if constexpr (N::cut >= 0) {
+    S::require_state_size(x);
+    using J = typename N::type;
+    const auto& joint = scene.template component<N::index>();
+    std::array<double, J::nq> gq;
+    std::array<double, J::nv> gv;
+    write_joint_state(joint, near, gq.data(), gv.data());
+    auto r = detail::read_cut_at<S, N::cut>(scene, x.data(), x.data() + S::n_q);
+    detail::unwrap_angles<J>(r.q.data(), gq.data());
+    return read_joint_value(joint, r.q.data(), r.v.data());
+  } else {
+    return get_joint<Name>(scene, x);
   }
 }
 
