@@ -438,7 +438,7 @@ void accelerations_articulated_body_in(const S& scene, const T& t, const T* q, c
   using namespace detail;
   using K = aba_kinds<A, S, T>;
   using P = aba_plan<A, S, Steps, K>;
-  const auto xs = state_view<S>(q, v);
+  const auto xs = state_view(scene, q, v);
   typename K::records ws;
   const auto motions = algebra_motions<A>(scene, q);
   link_loads<S, T> n_ext, f_ext;

@@ -103,7 +103,7 @@ template <class S, class T = double, class State>
   requires(!std::is_integral_v<T>)
 [[nodiscard]] energy_terms<T> energy(const S& scene, const T& t, const State& x) {
   const detail::frames_at_state<S, T> k(scene, x);
-  return detail::energy_of(scene, t, state_view<S>(k.q.data(), k.v.data()), k.q.data(), k.frames.data());
+  return detail::energy_of(scene, t, state_view(scene, k.q.data(), k.v.data()), k.q.data(), k.frames.data());
 }
 
 /// energy(scene, 0, x): an integral time is a time in seconds.

@@ -108,7 +108,7 @@ template <class A, class S, class T, class M, class PM>
 [[gnu::always_inline]] inline void solve_accelerations(const S& scene, const T& t, const T* q, const T* v, T* vdot,
                                                       const M& motions, const PM& pose, T* lambda = nullptr) {
   constexpr int N = S::n_v;
-  const auto x = state_view<S>(q, v);
+  const auto x = state_view(scene, q, v);
   link_loads<S, T> n_ext, f_ext;
   gather_external<A>(scene, t, x, motions, pose, n_ext, f_ext);
   std::array<T, N> b, r;
@@ -218,7 +218,7 @@ Eigen::Matrix<T, S::n_v, S::n_v> mass_matrix(const S& scene, const T* q) {
 template <class S, class T>
 std::array<T, S::n_v> inverse_dynamics(const S& scene, const T& t, const T* q, const T* v, const T* vdot) {
   using namespace detail;
-  const auto x = state_view<S>(q, v);
+  const auto x = state_view(scene, q, v);
   std::array<T, S::n_v> tau;
   const auto motions = link_motions<spatial_algebra, T, true>(scene, q);
   link_loads<S, T> n_ext, f_ext;

@@ -340,7 +340,7 @@ struct held_cuts {
           const auto r = read_cut(scene.template component<CI::joint>(), a, b);
           for (int k = 0; k < J::nv; ++k, ++i) {
             const double d = r.q[k] - q[i];
-            phi[i] = cut_coordinate_is_angle<J>(k) ? std::remainder(d, 2 * std::numbers::pi) : d;
+            phi[i] = periodic_coordinates<J>()[k] ? std::remainder(d, 2 * std::numbers::pi) : d;
             std::array<double, S::n_v> row{};
             add_frame_jacobian<S, CI::link_a>(motions, ls.pose, r.rows[k].wa, r.rows[k].va, a.r, row.data());
             add_frame_jacobian<S, CI::link_b>(motions, ls.pose, r.rows[k].wb, r.rows[k].vb, b.r, row.data());

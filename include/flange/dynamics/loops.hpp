@@ -39,6 +39,7 @@
 #include <concepts>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "flange/detail/inline.hpp"
 #include "flange/dynamics/algebra.hpp"
@@ -131,21 +132,26 @@ link_states<S, T, Motions> loop_link_states(const Motions& motions, const T* v) 
   return r;
 }
 
-template <class S, int Set, class T, class LS>
-set_motion<T> motion_of_set(const S& scene, const LS& ls) {
-  constexpr int L = S::tree.set_link[Set];
-  const link_pose<T>& p = ls.pose[L];
+/// A set's pose and velocity from its link's (set_motion's R, r, v and ω;
+/// its bias accelerations are left zero).
+template <class S, int Set, class T>
+set_motion<T> set_velocity(const S& scene, const link_pose<T>& p) {
   const Vec3<T> o = scene.model().set_offset[Set].template cast<T>();
   auto R = [&] {  // a set that does not turn against its link (the types say so) has its link's R
     if constexpr (set_rotation_kind<S>(Set) == -2) return p.R;
     else return Mat3<T>(scene.model().set_rotation[Set].template cast<T>() * p.R);
   };
-  return {R(),
-          point_position(p, o),
-          point_velocity(p, o),
-          p.R.transpose() * p.w,
-          p.R.transpose() * ls.wd[L],
-          point_acceleration(p, o, ls.wd[L], ls.a[L])};
+  return {R(), point_position(p, o), point_velocity(p, o), p.R.transpose() * p.w, Vec3<T>::Zero(), Vec3<T>::Zero()};
+}
+
+template <class S, int Set, class T, class LS>
+set_motion<T> motion_of_set(const S& scene, const LS& ls) {
+  constexpr int L = S::tree.set_link[Set];
+  const link_pose<T>& p = ls.pose[L];
+  set_motion<T> m = set_velocity<S, Set, T>(scene, p);
+  m.wd = p.R.transpose() * ls.wd[L];
+  m.a = point_acceleration(p, Vec3<T>(scene.model().set_offset[Set].template cast<T>()), ls.wd[L], ls.a[L]);
+  return m;
 }
 
 /// One constraint row: Φ, Φ̇, the bias Φ̈ at v̇ = 0 (= Ġ·v), and the row's
@@ -247,13 +253,22 @@ struct cut_reading {
   std::array<double, J::nv> v;
   std::array<constraint_row<double>, J::nv> rows;
 };
+/// The joint's coordinates q and rates v from its two frames' motions: its
+/// cut_state at frame_b's pose and motion relative to frame_a.
+template <class J, class T>
+void cut_state_between(const J& joint, const set_motion<T>& a, const set_motion<T>& b, T* q, T* v) {
+  const Mat3<T> R = b.R * a.R.transpose();
+  const Vec3<T> d = b.r - a.r;
+  const Vec3<T> p = a.R * d, w = a.R * (b.w - a.w), pd = a.R * (b.v - a.v - a.w.cross(d));
+  joint.cut_state(R, p, w, pd, q, v);
+}
+
 template <class J>
 cut_reading<J> read_cut(const J& joint, const set_motion<double>& a, const set_motion<double>& b) {
-  const Mat3d R = b.R * a.R.transpose();
-  const Vec3d d = b.r - a.r;
-  const Vec3d p = a.R * d, w = a.R * (b.w - a.w), pd = a.R * (b.v - a.v - a.w.cross(d));
   cut_reading<J> r;
-  joint.cut_state(R, p, w, pd, r.q.data(), r.v.data());
+  cut_state_between(joint, a, b, r.q.data(), r.v.data());
+  const Mat3d R = b.R * a.R.transpose();
+  const Vec3d d = b.r - a.r, p = a.R * d;
   // The rates are linear in (w, ṗ), frame_a coordinates: their coefficients
   // from unit motions, turned into the world's (ṗ = R_a·(v_b − v_a − ω_a × d)).
   std::array<Vec3d, J::nv> lw, lp;
@@ -279,14 +294,30 @@ cut_reading<J> read_cut(const J& joint, const set_motion<double>& a, const set_m
   return r;
 }
 
+/// Cut K's frames' poses and velocities at (q, v) in scalar T: one pass
+/// over the tree's poses and velocities, no accelerations.
+template <class S, int K, class T>
+std::pair<set_motion<T>, set_motion<T>> cut_frames_at(const S& scene, const T* q, const T* v) {
+  using CI = cut_info<S, K>;
+  const auto motions = link_motions<spatial_algebra, T, true>(scene, q);
+  const auto poses = link_poses<S, T>(motions, v);
+  return {set_velocity<S, CI::set_a, T>(scene, poses[S::tree.set_link[CI::set_a]]),
+          set_velocity<S, CI::set_b, T>(scene, poses[S::tree.set_link[CI::set_b]])};
+}
+
 /// Cut K's joint as its frames place it at (q, v).
 template <class S, int K>
 auto read_cut_at(const S& scene, const double* q, const double* v) {
-  using CI = cut_info<S, K>;
-  const auto motions = link_motions<spatial_algebra, double, true>(scene, q);
-  const auto ls = loop_link_states<S, double>(motions, v);
-  return read_cut(scene.template component<CI::joint>(), motion_of_set<S, CI::set_a, double>(scene, ls),
-                  motion_of_set<S, CI::set_b, double>(scene, ls));
+  const auto [a, b] = cut_frames_at<S, K, double>(scene, q, v);
+  return read_cut(scene.template component<cut_info<S, K>::joint>(), a, b);
+}
+
+/// Cut K's coordinates and rates at (q, v) in scalar T (declared in
+/// scene/named_state.hpp, for inputs that read a cut joint by name).
+template <class S, int K, class T>
+void cut_joint_values(const S& scene, const T* q, const T* v, T* cq, T* cv) {
+  const auto [a, b] = cut_frames_at<S, K, T>(scene, q, v);
+  cut_state_between(scene.template component<cut_info<S, K>::joint>(), a, b, cq, cv);
 }
 
 /// How cut K's frames keep the axes its rotation rows lock. The rows ask
@@ -328,14 +359,6 @@ int turned_over_cut(const S& scene, const double* q) {
         found = K;
   });
   return found;
-}
-
-/// Whether a cut joint's coordinate i is an angle (compared the short way
-/// round): its angle_coordinate, or each coordinate of a joint that only turns.
-template <class J>
-constexpr bool cut_coordinate_is_angle(int i) {
-  if constexpr (requires { J::angle_coordinate; }) return i == J::angle_coordinate;
-  else return J::as_cut.translations == 0;
 }
 
 /// Whether link A is link L or one of its ancestors.

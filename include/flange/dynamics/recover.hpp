@@ -179,7 +179,7 @@ template <class S, class T = double, class State>
   if constexpr (detail::has_loops<S>)
     accelerations_and_constraint_forces(scene, t, sol.q.data(), sol.v.data(), sol.vdot.data(), lambda.data());
   else accelerations(scene, t, sol.q.data(), sol.v.data(), sol.vdot.data());
-  const auto js = state_view<S>(sol.q.data(), sol.v.data());
+  const auto js = state_view(scene, sol.q.data(), sol.v.data());
   const Vec3<T> g = scene.gravity().template cast<T>();
 
   // Link motion, physical: R, r, ṙ, ω from the pose pass; ω̇ and r̈ from the

@@ -80,7 +80,7 @@ template <class S, class T, class Vy, class Vyd>
   std::array<T, (S::n_q > 0 ? S::n_q : 1)> q{};
   std::array<T, (S::n_v > 0 ? S::n_v : 1)> v{};
   detail::joint_state_from(scene, y, yd, q.data(), v.data());
-  const auto x = state_view<S>(q.data(), v.data());
+  const auto x = state_view(scene, q.data(), v.data());
   const Vec3<T> g = scene.gravity().template cast<T>();
   int row = 0;
   [&]<int... I>(std::integer_sequence<int, I...>) {

@@ -42,8 +42,8 @@ struct joint_is_cut {
   static_assert(always_false<Name>,
                 "flange: this joint (the template argument) closes a loop, and the scene cut it there: it has no "
                 "coordinates in the state, where they are meant here (get_joint<\"name\">(scene, x) and recover read "
-                "it from its frames; initial_state and close_loops take it by name, docs/loops.md); name a joint of "
-                "the loop's tree instead");
+                "it from its frames; initial_state, close_loops and an input's q<\"name\">(x) take it by name, "
+                "docs/loops.md); name a joint of the loop's tree instead");
 };
 template <class Name>
 struct cut_joint_cannot_be_held {
@@ -121,31 +121,58 @@ constexpr int joint_named(std::string_view name) {
   return c;
 }
 
+/// The component index of the joint named Name, a tree joint or a cut one,
+/// or −1 after one diagnostic listing the valid names.
+template <class S, fixed_string Name>
+constexpr int joint_or_cut_named() {
+  constexpr int c = S::index_of(Name.view());
+  if constexpr (c >= 0 && S::tree.cut_of[c < 0 ? 0 : c] >= 0) return c;
+  else return joint_named<S, Name>();
+}
+
+/// Cut K's coordinates cq and rates cv as its frames place them at (q, v):
+/// its cut_state, what recover and get_joint report. Defined with the loops'
+/// kinematics (dynamics/loops.hpp), which every scene with a loop includes.
+template <class S, int K, class T>
+void cut_joint_values(const S& scene, const T* q, const T* v, T* cq, T* cv);
+
+/// The error of a view made without its scene that is asked for a cut joint.
+[[noreturn]] inline void cut_joint_needs_scene(std::string_view name) {
+  throw parameter_error(concat("flange: joint \"", name, "\" closes a loop and is read from its frames, which ",
+                               "this joint state cannot place: it was made as state_view<S>(q, v); make it as ",
+                               "state_view(scene, q, v)"));
+}
 }  // namespace detail
 
 /// The joint state of scene S as an input callable sees it: by position
 /// (x.q(i), x.v(i)) as joint_state, and by name (q<"elbow">(x), v<"elbow">(x)).
+/// A joint that closes a loop (cut) is read by name too, as its frames place
+/// it: each such read is one pass over the tree's poses and velocities.
 template <class T, class S>
 struct named_joint_state : joint_state<T> {
   using scene_type = S;
   using joint_state<T>::q;
   using joint_state<T>::v;
   using joint_state<T>::qd;
+  const S* scene_ = nullptr;  ///< for the cut joints' reads; null in a view made without it
 
   /// The named joint's coordinates: a T for a one-coordinate joint, else a
-  /// vector of its nq coordinates (a quaternion's four, x, y, z, w as Eigen stores them).
+  /// vector of its nq coordinates (a quaternion's four, x, y, z, w as Eigen
+  /// stores them). A cut joint's angles lie within (−π, π].
   template <fixed_string Name>
   [[nodiscard]] auto q() const {
-    constexpr int c = detail::joint_named<S, Name>();
+    constexpr int c = detail::joint_or_cut_named<S, Name>();
     if constexpr (c < 0) return T(0);  // after the diagnostic, no second error
+    else if constexpr (S::tree.cut_of[c] >= 0) return read<S::table.nq[c]>(cut<Name, c>().first.data());
     else return read<S::table.nq[c]>(this->q_ + S::tree.q_offset[c]);
   }
   /// The named joint's rates: a T for a one-coordinate joint, else its nv
   /// rates (a Spherical's angular velocity, a FreeMotion's v then ω).
   template <fixed_string Name>
   [[nodiscard]] auto v() const {
-    constexpr int c = detail::joint_named<S, Name>();
+    constexpr int c = detail::joint_or_cut_named<S, Name>();
     if constexpr (c < 0) return T(0);
+    else if constexpr (S::tree.cut_of[c] >= 0) return read<S::table.nv[c]>(cut<Name, c>().second.data());
     else return read<S::table.nv[c]>(this->v_ + S::tree.v_offset[c]);
   }
   template <fixed_string Name>
@@ -154,6 +181,13 @@ struct named_joint_state : joint_state<T> {
   }
 
  private:
+  template <fixed_string Name, int C>
+  auto cut() const {
+    std::pair<std::array<T, S::table.nq[C]>, std::array<T, S::table.nv[C]>> r;
+    if (!scene_) detail::cut_joint_needs_scene(Name.view());
+    detail::cut_joint_values<S, S::tree.cut_of[C]>(*scene_, this->q_, this->v_, r.first.data(), r.second.data());
+    return r;
+  }
   template <int N>
   static auto read(const T* p) {
     if constexpr (N == 1) {
@@ -168,8 +202,14 @@ struct named_joint_state : joint_state<T> {
 
 /// The joint state of scene S at (q, v).
 template <class S, class T>
+named_joint_state<T, S> state_view(const S& scene, const T* q, const T* v) {
+  return {{q, v, S::n_q}, &scene};
+}
+/// The same without the scene: its tree joints read by name as with it, a
+/// cut joint not (parameter_error).
+template <class S, class T>
 named_joint_state<T, S> state_view(const T* q, const T* v) {
-  return {{q, v, S::n_q}};
+  return {{q, v, S::n_q}, nullptr};
 }
 
 /// q<"elbow">(x): the named joint's coordinates in an input's state x (the
