@@ -31,13 +31,30 @@ constexpr std::array<std::size_t, N> shuffled_order() {
   return order;
 }
 
+/// 0, 1, …, N−1 with From moved to just after To (To > From).
+template <std::size_t N>
+constexpr std::array<std::size_t, N> moved_after(std::size_t from, std::size_t to) {
+  std::array<std::size_t, N> order{};
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (i != from) order[k++] = i;
+    if (i == to) order[k++] = from;
+  }
+  return order;
+}
+
+/// A scene of parts in the given order of their places.
+template <auto Order, class Parts>
+auto scene_in_order(const Parts& parts) {
+  return [&]<std::size_t... I>(std::index_sequence<I...>) {
+    return scene(std::get<Order[I]>(parts)...);
+  }(std::make_index_sequence<Order.size()>{});
+}
+
 /// A scene of parts in the order shuffled_order<Seed> gives.
 template <unsigned Seed, class Parts>
 auto shuffled_scene(const Parts& parts) {
-  constexpr auto order = shuffled_order<Seed, std::tuple_size_v<Parts>>();
-  return [&]<std::size_t... I>(std::index_sequence<I...>) {
-    return scene(std::get<order[I]>(parts)...);
-  }(std::make_index_sequence<order.size()>{});
+  return scene_in_order<shuffled_order<Seed, std::tuple_size_v<Parts>>()>(parts);
 }
 
 }  // namespace flange::test
