@@ -155,9 +155,9 @@ struct trajectory {
 /// joint's angles unwrapped along the run: the first as its frames place it,
 /// within (−π, π], each next one within half a turn of the one before
 /// carried forward by the mean of the two samples' rates. It stays
-/// continuous while the rate's change between two samples, times the
-/// interval, stays under a turn. A tree joint's angles are state
-/// coordinates, continuous already.
+/// continuous while that estimate of the turn between two samples (the
+/// trapezoid rule on the rate) is off by less than half a turn. A tree
+/// joint's angles are state coordinates, continuous already.
 template <fixed_string Name, class S, class State>
 [[nodiscard]] std::vector<joint_state_t<typename detail::named_any_joint<S, Name>::type>> get_joint(
     const S& scene, const trajectory<State>& tr) {
