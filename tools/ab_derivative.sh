@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Time the paper's arm and crane derivatives of another commit (side a) against
-# this tree's (side b) in one program, in turns, so that the machine's drift
-# falls on both alike:
+# Time the derivatives of the paper's arm, the crane and the four-bar (a
+# loop) of another commit (side a) against this tree's (side b) in one
+# program, in turns, so that the machine's drift falls on both alike:
 #   tools/ab_derivative.sh REV [CXXFLAGS...]
 # Both sides are compiled from tools/probes/ab_scenes.cpp at the Release
 # flags, REV's headers in namespace flange_a and this tree's in flange_b

@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <vector>
 
-using ab_state = std::array<double, 4>;
+using ab_state = std::array<double, 6>;
 using fn = void (*)(const ab_state&, ab_state&);
 #define AB_DECLARE(name) \
   void name##_a(const ab_state&, ab_state&); \
@@ -18,13 +18,15 @@ AB_DECLARE(arm)
 AB_DECLARE(arm_handwritten)
 AB_DECLARE(crane)
 AB_DECLARE(crane_handwritten)
+AB_DECLARE(fourbar)
+AB_DECLARE(fourbar_handwritten)
 
 namespace {
 template <class T>
 inline void opaque(T& v) { asm volatile("" : "+m"(v) : : "memory"); }
 
 double ns_per_call(fn f, long k, bool latency) {
-  ab_state x{0.3, 0.7, 0.3, -0.5}, dx{};
+  ab_state x{0.3, 0.7, 0.3, -0.5, 0, 0}, dx{};
   const auto t0 = std::chrono::steady_clock::now();
   for (long i = 0; i < k; ++i) {
     opaque(x);
@@ -45,16 +47,19 @@ int main() {
   const scene scenes[] = {{"robot_arm", arm_a, arm_b},
                           {"robot_arm_handwritten", arm_handwritten_a, arm_handwritten_b},
                           {"gantry_crane", crane_a, crane_b},
-                          {"gantry_crane_handwritten", crane_handwritten_a, crane_handwritten_b}};
+                          {"gantry_crane_handwritten", crane_handwritten_a, crane_handwritten_b},
+                          {"fourbar", fourbar_a, fourbar_b},
+                          {"fourbar_handwritten", fourbar_handwritten_a, fourbar_handwritten_b}};
+  constexpr int n_scenes = sizeof(scenes) / sizeof(scenes[0]);
   constexpr int rounds = 41;
   for (const bool latency : {false, true}) {
-    std::vector<double> ta[4], tb[4];
+    std::vector<double> ta[n_scenes], tb[n_scenes];
     for (int r = 0; r < rounds; ++r)
-      for (int i = 0; i < 4; ++i) {
+      for (int i = 0; i < n_scenes; ++i) {
         ta[i].push_back(ns_per_call(scenes[i].a, 400000, latency));
         tb[i].push_back(ns_per_call(scenes[i].b, 400000, latency));
       }
-    for (int i = 0; i < 4; ++i) {
+    for (int i = 0; i < n_scenes; ++i) {
       std::sort(ta[i].begin(), ta[i].end());
       std::sort(tb[i].begin(), tb[i].end());
       const double qa = ta[i][rounds / 4], qb = tb[i][rounds / 4];

@@ -124,7 +124,7 @@ struct link_states {
   std::array<Vec3<T>, S::tree.n_links> wd, a;
 };
 template <class S, class T, class Motions>
-link_states<S, T, Motions> loop_link_states(const Motions& motions, const T* v) {
+FLANGE_INLINE link_states<S, T, Motions> loop_link_states(const Motions& motions, const T* v) {
   link_states<S, T, Motions> r{link_poses<S, T>(motions, v), {}, {}};
   // ω̇ and a at v̇ = 0, without gravity: the bias accelerations.
   link_accelerations<S, T>(motions, v, no_rates{}, link_kinematics{zero_vec<T>{}, zero_vec<T>{}, zero_vec<T>{}}, r.wd,
@@ -135,7 +135,7 @@ link_states<S, T, Motions> loop_link_states(const Motions& motions, const T* v) 
 /// A set's pose and velocity from its link's (set_motion's R, r, v and ω;
 /// its bias accelerations are left zero).
 template <class S, int Set, class T>
-set_motion<T> set_velocity(const S& scene, const link_pose<T>& p) {
+FLANGE_INLINE set_motion<T> set_velocity(const S& scene, const link_pose<T>& p) {
   const Vec3<T> o = scene.model().set_offset[Set].template cast<T>();
   auto R = [&] {  // a set that does not turn against its link (the types say so) has its link's R
     if constexpr (set_rotation_kind<S>(Set) == -2) return p.R;
@@ -144,14 +144,26 @@ set_motion<T> set_velocity(const S& scene, const link_pose<T>& p) {
   return {R(), point_position(p, o), point_velocity(p, o), p.R.transpose() * p.w, Vec3<T>::Zero(), Vec3<T>::Zero()};
 }
 
+/// A set's pose, motion and bias accelerations (set_motion) from its
+/// link's. A set on the World is fixed: its R and r, and zeros, with no
+/// arithmetic (the loops' passes put the World at rest). Always inlined,
+/// so that what a cut's rows do not read is not computed.
 template <class S, int Set, class T, class LS>
-set_motion<T> motion_of_set(const S& scene, const LS& ls) {
+FLANGE_INLINE set_motion<T> motion_of_set(const S& scene, const LS& ls) {
   constexpr int L = S::tree.set_link[Set];
-  const link_pose<T>& p = ls.pose[L];
-  set_motion<T> m = set_velocity<S, Set, T>(scene, p);
-  m.wd = p.R.transpose() * ls.wd[L];
-  m.a = point_acceleration(p, Vec3<T>(scene.model().set_offset[Set].template cast<T>()), ls.wd[L], ls.a[L]);
-  return m;
+  if constexpr (L == 0) {
+    Mat3<T> R;
+    if constexpr (set_rotation_kind<S>(Set) == -2) R.setIdentity();
+    else R = scene.model().set_rotation[Set].template cast<T>();
+    const Vec3<T> zero = Vec3<T>::Zero();
+    return {R, scene.model().set_offset[Set].template cast<T>(), zero, zero, zero, zero};
+  } else {
+    const link_pose<T>& p = ls.pose[L];
+    set_motion<T> m = set_velocity<S, Set, T>(scene, p);
+    m.wd = p.R.transpose() * ls.wd[L];
+    m.a = point_acceleration(p, Vec3<T>(scene.model().set_offset[Set].template cast<T>()), ls.wd[L], ls.a[L]);
+    return m;
+  }
 }
 
 /// One constraint row: Φ, Φ̇, the bias Φ̈ at v̇ = 0 (= Ġ·v), and the row's
@@ -166,7 +178,7 @@ struct constraint_row {
 
 /// A row u·d: u fixed in frame a (u̇ = ω_a × u) or in the World, d = r_b − r_a.
 template <class T, bool Turning>
-constraint_row<T> translation_row(const Vec3<T>& u, const set_motion<T>& a, const set_motion<T>& b) {
+FLANGE_INLINE constraint_row<T> translation_row(const Vec3<T>& u, const set_motion<T>& a, const set_motion<T>& b) {
   const Vec3<T> d = b.r - a.r, dd = b.v - a.v, dda = b.a - a.a;
   constraint_row<T> r;
   r.phi = u.dot(d);
@@ -187,7 +199,7 @@ constraint_row<T> translation_row(const Vec3<T>& u, const set_motion<T>& a, cons
 }
 /// A row u·w: u fixed in frame a, w fixed in frame b.
 template <class T>
-constraint_row<T> rotation_row(const Vec3<T>& u, const Vec3<T>& w, const set_motion<T>& a, const set_motion<T>& b) {
+FLANGE_INLINE constraint_row<T> rotation_row(const Vec3<T>& u, const Vec3<T>& w, const set_motion<T>& a, const set_motion<T>& b) {
   const Vec3<T> wu = w.cross(u), dw = b.w - a.w;
   const Vec3<T> ud = a.w.cross(u), wdot = b.w.cross(w);
   constraint_row<T> r;
@@ -202,7 +214,7 @@ constraint_row<T> rotation_row(const Vec3<T>& u, const Vec3<T>& w, const set_mot
 
 /// Cut K's rows from its two frames' motions.
 template <class S, int K, class T>
-void cut_constraint(const S& scene, const set_motion<T>& a, const set_motion<T>& b, constraint_row<T>* rows) {
+FLANGE_INLINE void cut_constraint(const S& scene, const set_motion<T>& a, const set_motion<T>& b, constraint_row<T>* rows) {
   using CI = cut_info<S, K>;
   const auto& joint = scene.template component<CI::joint>();
   int i = cut_row<S, K>();
@@ -407,7 +419,7 @@ struct loop_terms {
 };
 
 template <class S, class T, class Motions>
-loop_terms<S, T> loop_kinematics_at(const S& scene, const Motions& motions, const T* v) {
+FLANGE_INLINE loop_terms<S, T> loop_kinematics_at(const S& scene, const Motions& motions, const T* v) {
   constexpr int m = n_constraints<S>();
   const auto ls = loop_link_states<S, T>(motions, v);
   loop_terms<S, T> r;
