@@ -78,6 +78,26 @@ struct link_pose {
   Vec3<T> w;  ///< ω, link coordinates
 };
 
+/// A link pose's rotation in the form the scene's type allows: about axis K
+/// when K ≥ 0 (a planar scene, where every link turns about K: algebra.hpp),
+/// as its cosine and sine; dense otherwise.
+template <int K, class T>
+FLANGE_INLINE decltype(auto) typed_rotation(const link_pose<T>& P) {
+  if constexpr (K >= 0) {
+    constexpr int j = (K + 1) % 3, k = (K + 2) % 3;
+    return coordinate_rotation<T, K>{P.R(j, j), P.R(j, k)};
+  } else {
+    return (P.R);
+  }
+}
+/// An angular velocity or acceleration in the form the scene's type allows:
+/// along axis K when K ≥ 0 (a planar scene), dense otherwise.
+template <int K, class T>
+FLANGE_INLINE auto typed_angular(const Vec3<T>& w) {
+  if constexpr (K >= 0) return to_svec<1 << K>(w);
+  else return to_svec(w);
+}
+
 /// Every link of the tree: link_poses' Keep, a type whose value marks the
 /// links to write out. (A type: with the array itself as the template
 /// argument, the g++ 12 build of tests/hard_mass_ratio_test.cpp wrote out
@@ -116,11 +136,15 @@ struct pose_pass : down_only_walk {
       c.w = m.w(vc).dense();
     } else {
       // Each product in its sparse form (a revolute about a coordinate axis
-      // turns two rows of R; an offset along one axis reads one column).
+      // turns two rows of R; an offset along one axis reads one column; in
+      // a planar scene P's R is a turn about the normal and ω lies along it).
       for (int j = 0; j < 3; ++j) c.R.col(j) = rot(m.E(), to_svec(Vec3<T>(P.R.col(j)))).dense();
-      c.r = P.r + rot_t(P.R, m.p).dense();
-      c.v = P.v + rot_t(P.R, cross(to_svec(P.w), m.p) + m.pd(vc)).dense();
-      c.w = rot(m.E(), to_svec(P.w)).dense() + m.w(vc).dense();
+      constexpr int K = planar_axis<S>();
+      const auto& R = typed_rotation<K>(P);
+      const auto w = typed_angular<K>(P.w);
+      c.r = P.r + rot_t(R, m.p).dense();
+      c.v = P.v + rot_t(R, cross(w, m.p) + m.pd(vc)).dense();
+      c.w = rot(m.E(), w).dense() + m.w(vc).dense();
     }
     return c;
   }
@@ -176,17 +200,32 @@ void link_accelerations(const Motions& motions, const T* v, const VD& vdot, cons
 /// position, velocity and (from the link's ω̇ and a, link coordinates) its
 /// acceleration, world coordinates. Every frame's motion is its link's
 /// through these (recovery, energies, force elements, loop constraints).
-template <class T>
+/// K ≥ 0: the scene is planar about axis K (typed_rotation), which spares
+/// the arithmetic out of the plane.
+template <int K = -1, class T>
 FLANGE_INLINE Vec3<T> point_position(const link_pose<T>& L, const Vec3<T>& p) {
-  return L.r + L.R.transpose() * p;
+  if constexpr (K >= 0) return L.r + rot_t(typed_rotation<K>(L), to_svec(p)).dense();
+  else return L.r + L.R.transpose() * p;
 }
-template <class T>
+template <int K = -1, class T>
 FLANGE_INLINE Vec3<T> point_velocity(const link_pose<T>& L, const Vec3<T>& p) {
-  return L.v + L.R.transpose() * L.w.cross(p);
+  if constexpr (K >= 0) return L.v + rot_t(typed_rotation<K>(L), cross(typed_angular<K>(L.w), to_svec(p))).dense();
+  else return L.v + L.R.transpose() * L.w.cross(p);
 }
-template <class T>
+/// An angular velocity or acceleration w in link coordinates, in the world's.
+template <int K = -1, class T>
+FLANGE_INLINE Vec3<T> angular_in_world(const link_pose<T>& L, const Vec3<T>& w) {
+  if constexpr (K >= 0) return rot_t(typed_rotation<K>(L), typed_angular<K>(w)).dense();
+  else return L.R.transpose() * w;
+}
+template <int K = -1, class T>
 FLANGE_INLINE Vec3<T> point_acceleration(const link_pose<T>& L, const Vec3<T>& p, const Vec3<T>& wd, const Vec3<T>& a) {
-  return L.R.transpose() * (a + wd.cross(p) + L.w.cross(L.w.cross(p)));
+  if constexpr (K >= 0) {
+    const auto w = typed_angular<K>(L.w), P = to_svec(p);
+    return rot_t(typed_rotation<K>(L), to_svec(a) + cross(typed_angular<K>(wd), P) + cross(w, cross(w, P))).dense();
+  } else {
+    return L.R.transpose() * (a + wd.cross(p) + L.w.cross(L.w.cross(p)));
+  }
 }
 
 }  // namespace flange::detail

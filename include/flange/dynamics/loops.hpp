@@ -136,12 +136,18 @@ FLANGE_INLINE link_states<S, T, Motions> loop_link_states(const Motions& motions
 /// its bias accelerations are left zero).
 template <class S, int Set, class T>
 FLANGE_INLINE set_motion<T> set_velocity(const S& scene, const link_pose<T>& p) {
+  constexpr int K = planar_axis<S>();
   const Vec3<T> o = scene.model().set_offset[Set].template cast<T>();
   auto R = [&] {  // a set that does not turn against its link (the types say so) has its link's R
     if constexpr (set_rotation_kind<S>(Set) == -2) return p.R;
     else return Mat3<T>(scene.model().set_rotation[Set].template cast<T>() * p.R);
   };
-  return {R(), point_position(p, o), point_velocity(p, o), p.R.transpose() * p.w, Vec3<T>::Zero(), Vec3<T>::Zero()};
+  return {R(),
+          point_position<K>(p, o),
+          point_velocity<K>(p, o),
+          angular_in_world<K>(p, p.w),
+          Vec3<T>::Zero(),
+          Vec3<T>::Zero()};
 }
 
 /// A set's pose, motion and bias accelerations (set_motion) from its
@@ -160,8 +166,9 @@ FLANGE_INLINE set_motion<T> motion_of_set(const S& scene, const LS& ls) {
   } else {
     const link_pose<T>& p = ls.pose[L];
     set_motion<T> m = set_velocity<S, Set, T>(scene, p);
-    m.wd = p.R.transpose() * ls.wd[L];
-    m.a = point_acceleration(p, Vec3<T>(scene.model().set_offset[Set].template cast<T>()), ls.wd[L], ls.a[L]);
+    constexpr int K = planar_axis<S>();
+    m.wd = angular_in_world<K>(p, ls.wd[L]);
+    m.a = point_acceleration<K>(p, Vec3<T>(scene.model().set_offset[Set].template cast<T>()), ls.wd[L], ls.a[L]);
     return m;
   }
 }
