@@ -221,7 +221,8 @@ FLANGE_INLINE Vec3<T> angular_in_world(const link_pose<T>& L, const Vec3<T>& w) 
 template <int K = -1, class T>
 FLANGE_INLINE Vec3<T> point_acceleration(const link_pose<T>& L, const Vec3<T>& p, const Vec3<T>& wd, const Vec3<T>& a) {
   if constexpr (K >= 0) {
-    const auto w = typed_angular<K>(L.w), P = to_svec(p);
+    const auto w = typed_angular<K>(L.w);
+    const auto P = to_svec(p);
     return rot_t(typed_rotation<K>(L), to_svec(a) + cross(typed_angular<K>(wd), P) + cross(w, cross(w, P))).dense();
   } else {
     return L.R.transpose() * (a + wd.cross(p) + L.w.cross(L.w.cross(p)));
