@@ -401,31 +401,20 @@ FLANGE_INLINE void add_frame_jacobian(const Motions& motions, const Poses& pose,
       const auto& m = std::get<L - 1>(motions);
       const link_pose<T>& P = pose[L];
       // With the point's lever arm folded into the torque: n·ω + f·(v + ω × (p − r)) = (n + (p − r) × f)·ω + f·v.
-      const auto coefficients = [&]() FLANGE_INLINE_LAMBDA {
-        constexpr int k = planar_axis<S>();
-        if constexpr (k >= 0) {
-          // In a planar scene ω is along k and every R turns about k (its
-          // row k is e_k): of R·(n + (p − r) × f) only component k is read,
-          // and R·f stays in the plane.
-          constexpr int i = (k + 1) % 3, j = (k + 2) % 3;
-          const Vec3<T> d = p - P.r;
-          Vec3<T> a = Vec3<T>::Zero(), b;
-          a(k) = n(k) + (d(i) * f(j) - d(j) * f(i));
-          b(i) = P.R(i, i) * f(i) + P.R(i, j) * f(j);
-          b(j) = P.R(j, i) * f(i) + P.R(j, j) * f(j);
-          b(k) = T(0);
-          return std::pair{a, b};
-        } else {
-          return std::pair{Vec3<T>(P.R * (n + (p - P.r).cross(f))), Vec3<T>(P.R * f)};
-        }
-      }();
-      const Vec3<T>&nn = coefficients.first, &ff = coefficients.second;
+      // In a planar scene ω is along the normal k and every R turns about k:
+      // of R·(n + (p − r) × f) only component k is read, R·f stays in the
+      // plane (the typed forms of kinematics.hpp).
+      constexpr int k = planar_axis<S>();
+      constexpr int in_plane = k >= 0 ? 7 & ~(1 << k) : 7;
+      const auto& R = typed_rotation<k>(P);
+      const auto nn = rot(R, typed_angular<k>(Vec3<T>(n + (p - P.r).cross(f))));
+      const auto ff = rot(R, to_svec<in_plane>(f));
       [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
         // Each column's typed parts (a revolute's along one axis, no linear
         // part) pick the components of nn and ff that are computed at all.
         ((row[LI::v + K] += [&] {
            const auto c = m.template col<K>();
-           return value_of<T>(dot(to_svec(nn), c.ang) + dot(to_svec(ff), c.lin));
+           return value_of<T>(dot(nn, c.ang) + dot(ff, c.lin));
          }()),
          ...);
       }(std::make_integer_sequence<int, LI::nv>{});
