@@ -196,10 +196,11 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   }
   for (int c = 0; c < m; ++c)
     if (norm2[c] > largest) largest = norm2[c];
-  // Q's columns overwrite B's; R's row j is pivot step j, its columns are kept
-  // by original index (later swaps of p must not move them).
+  // Q's columns overwrite B's, in pivot order: a pivot swaps its row of B
+  // (and everything kept per row) into place, p[j] remembering the row's
+  // original index, and R's columns with it.
   std::array<std::array<T, m>, m> R;
-  const std::array<T, m> norm2_0 = norm2;
+  std::array<T, m> norm2_0 = norm2;
   T repeats = T(constraint_redundancy) * drift;  // a remainder at most this fraction of its row's norm: repeated
   if (repeats < T(constraint_redundancy_floor)) repeats = T(constraint_redundancy_floor);
   repeats = repeats * repeats;
@@ -207,24 +208,29 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   for (int j = 0; j < m; ++j) {
     int best = -1;
     for (int c = j; c < m; ++c)
-      if (norm2[p[c]] > repeats * norm2_0[p[c]] && (best < 0 || norm2[p[c]] > norm2[p[best]])) best = c;
+      if (norm2[c] > repeats * norm2_0[c] && (best < 0 || norm2[c] > norm2[best])) best = c;
     if (best < 0) break;
-    std::swap(p[j], p[best]);
-    const int cj = p[j];
-    T nn(0);
-    for (int i = 0; i < n; ++i) nn += B[cj][i] * B[cj][i];
+    if (best != j) {
+      std::swap(B[j], B[best]);
+      std::swap(norm2[j], norm2[best]);
+      std::swap(norm2_0[j], norm2_0[best]);
+      std::swap(own[j], own[best]);
+      std::swap(gamma[j], gamma[best]);
+      std::swap(p[j], p[best]);
+      for (int i = 0; i < j; ++i) std::swap(R[i][j], R[i][best]);
+    }
+    const T nn = norm2[j];  // B[j]'s squared norm, summed after its last update
     if (!(nn > T(1e-30) * largest)) break;  // exactly dependent: nothing left to damp
     const T r = sqrt(nn);
-    R[j][cj] = r;
-    for (int i = 0; i < n; ++i) B[cj][i] /= r;
+    R[j][j] = r;
+    for (int i = 0; i < n; ++i) B[j][i] /= r;
     for (int c = j + 1; c < m; ++c) {
-      const int cc = p[c];
       T d(0);
-      for (int i = 0; i < n; ++i) d += B[cj][i] * B[cc][i];
-      R[j][cc] = d;
-      for (int i = 0; i < n; ++i) B[cc][i] -= d * B[cj][i];
-      norm2[cc] = T(0);
-      for (int i = 0; i < n; ++i) norm2[cc] += B[cc][i] * B[cc][i];
+      for (int i = 0; i < n; ++i) d += B[j][i] * B[c][i];
+      R[j][c] = d;
+      for (int i = 0; i < n; ++i) B[c][i] -= d * B[j][i];
+      norm2[c] = T(0);
+      for (int i = 0; i < n; ++i) norm2[c] += B[c][i] * B[c][i];
     }
     rank = j + 1;
   }
@@ -241,7 +247,7 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   std::array<T, m> u{}, inv;
   T e_max(0);
   for (int j = 0; j < rank; ++j) {
-    const T rjj = R[j][p[j]], mu2 = T(constraint_damping * constraint_damping) * own[p[j]];
+    const T rjj = R[j][j], mu2 = T(constraint_damping * constraint_damping) * own[j];
     const T den = T(1) / (rjj * rjj + mu2);
     inv[j] = rjj * den;
     const T e = mu2 * den;
@@ -251,21 +257,21 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
     // Away from singular positions the sweeps converge to R₁₁ᵀ·u = (Pᵀ·γ)₁
     // within round-off (e_max⁴ ≤ 1e-16): solve it once, undamped.
     for (int j = 0; j < rank; ++j) {
-      T x = gamma[p[j]];
-      for (int i = 0; i < j; ++i) x -= R[i][p[j]] * u[i];
-      u[j] = x / R[j][p[j]];
+      T x = gamma[j];
+      for (int i = 0; i < j; ++i) x -= R[i][j] * u[i];
+      u[j] = x / R[j][j];
     }
   } else {
     std::array<T, m> res, du;
     for (int sweep = 0; sweep < constraint_sweeps; ++sweep) {
       for (int j = 0; j < rank; ++j) {  // res = (Pᵀ·γ)₁ − R₁₁ᵀ·u
-        T x = gamma[p[j]];
-        for (int i = 0; i <= j; ++i) x -= R[i][p[j]] * u[i];
+        T x = gamma[j];
+        for (int i = 0; i <= j; ++i) x -= R[i][j] * u[i];
         res[j] = x;
       }
       for (int j = 0; j < rank; ++j) {  // R₁₁ᵀ·du = res, each division damped
         T x = res[j];
-        for (int i = 0; i < j; ++i) x -= R[i][p[j]] * du[i];
+        for (int i = 0; i < j; ++i) x -= R[i][j] * du[i];
         du[j] = x * inv[j];
       }
       for (int j = 0; j < rank; ++j) u[j] += du[j];
@@ -276,9 +282,9 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   for (int i = 0; i < n; ++i) dz[i] = T(0);
   for (int j = 0; j < rank; ++j) {
     T qz(0);
-    for (int i = 0; i < n; ++i) qz += B[p[j]][i] * z0[i];
+    for (int i = 0; i < n; ++i) qz += B[j][i] * z0[i];
     w[j] = u[j] - qz;
-    for (int i = 0; i < n; ++i) dz[i] += w[j] * B[p[j]][i];
+    for (int i = 0; i < n; ++i) dz[i] += w[j] * B[j][i];
   }
   if (lambda) {
     for (int j = m - 1; j >= 0; --j) {
@@ -287,8 +293,8 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
         continue;
       }
       T x = w[j];
-      for (int c = j + 1; c < rank; ++c) x -= R[j][p[c]] * lambda[p[c]];
-      lambda[p[j]] = x / R[j][p[j]];
+      for (int c = j + 1; c < rank; ++c) x -= R[j][c] * lambda[p[c]];
+      lambda[p[j]] = x / R[j][j];
     }
   }
   std::array<T, n> dv;
