@@ -145,9 +145,7 @@ template <class A, class S, class T, class M, class PM>
       ldlt_pivots<N, T> f;
       if (const auto pivot = ldlt_factor<N>(Mm, f, scale.data()); pivot.index >= 0) [[unlikely]]
         singular_mass_matrix<S>(pivot, t, q, v);
-      std::array<T, N> y;
-      ldlt_solve<N>(Mm, f, r.data(), y.data());
-      constrained_accelerations(scene, pose, Mm, f, v, y.data(), vdot, lambda);
+      constrained_accelerations(scene, pose, Mm, f, v, r.data(), vdot, lambda);
     } else {
       if (const auto pivot = solve_spd<N>(Mm, r.data(), vdot, scale.data()); pivot.index >= 0) [[unlikely]]
         singular_mass_matrix<S>(pivot, t, q, v);

@@ -74,9 +74,10 @@ template <int N, class T, class MM>
   return {};
 }
 
-/// a = M⁻¹·r from the factors of ldlt_factor (r and a may be one array).
+/// a = L⁻¹·r and a = L⁻ᵀ·r: the halves of a solve with the factors of
+/// ldlt_factor (r and a may be one array).
 template <int N, class T, class MM>
-[[gnu::always_inline]] inline void ldlt_solve(const MM& M, const ldlt_pivots<N, T>& f, const T* r, T* a) {
+[[gnu::always_inline]] inline void ldlt_forward(const MM& M, const T* r, T* a) {
 #pragma GCC unroll 16
   for (int i = 0; i < N; ++i) {
     T x = r[i];
@@ -84,34 +85,25 @@ template <int N, class T, class MM>
     for (int k = 0; k < i; ++k) x -= M(i, k) * a[k];
     a[i] = x;
   }
+}
+template <int N, class T, class MM>
+[[gnu::always_inline]] inline void ldlt_backward(const MM& M, const T* r, T* a) {
 #pragma GCC unroll 16
   for (int i = N - 1; i >= 0; --i) {
-    T x = a[i] * f.inv_d[i];
+    T x = r[i];
 #pragma GCC unroll 16
     for (int k = i + 1; k < N; ++k) x -= M(k, i) * a[k];
     a[i] = x;
   }
 }
 
-/// With M = W·Wᵀ, W = L·√D: a = W⁻¹·r (forward) and a = W⁻ᵀ·r (backward),
-/// the halves of a solve (a loop scene's constraint solve, loop_solve.hpp).
-/// sqrt_inv_d holds 1/√d_j.
+/// a = M⁻¹·r from the factors of ldlt_factor (r and a may be one array).
 template <int N, class T, class MM>
-inline void ldlt_forward_half(const MM& M, const std::array<T, N>& sqrt_inv_d, const T* r, T* a) {
-  for (int i = 0; i < N; ++i) {
-    T x = r[i];
-    for (int k = 0; k < i; ++k) x -= M(i, k) * a[k];
-    a[i] = x;
-  }
-  for (int i = 0; i < N; ++i) a[i] *= sqrt_inv_d[i];
-}
-template <int N, class T, class MM>
-inline void ldlt_backward_half(const MM& M, const std::array<T, N>& sqrt_inv_d, const T* r, T* a) {
-  for (int i = N - 1; i >= 0; --i) {
-    T x = r[i] * sqrt_inv_d[i];
-    for (int k = i + 1; k < N; ++k) x -= M(k, i) * a[k];
-    a[i] = x;
-  }
+[[gnu::always_inline]] inline void ldlt_solve(const MM& M, const ldlt_pivots<N, T>& f, const T* r, T* a) {
+  ldlt_forward<N>(M, r, a);
+#pragma GCC unroll 16
+  for (int i = 0; i < N; ++i) a[i] *= f.inv_d[i];
+  ldlt_backward<N>(M, a, a);
 }
 
 /// Solves M·a = r for a symmetric positive-definite M by an unrolled LDLᵀ,

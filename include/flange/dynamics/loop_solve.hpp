@@ -133,38 +133,49 @@ inline constexpr double constraint_redundancy = 100;
 inline constexpr double constraint_redundancy_floor = 1e-10;
 
 /// v̇ for the constrained equations of motion, given the factors of M
-/// (ldlt.hpp) and y = M⁻¹·(τ − b).
+/// (ldlt.hpp) and r = τ − b.
 ///
 /// With M = W·Wᵀ (W = L·√D) and z = Wᵀ·v̇, the accelerations are the least
-/// change ‖z − Wᵀ·y‖ with Bᵀ·z = γ = −Ġ·v, B = W⁻¹·Gᵀ. Modified Gram–Schmidt
-/// with column pivoting gives B·P = Q·R, and z = Wᵀ·y + Q·w with
-/// R₁₁ᵀ·(Qᵀ·Wᵀ·y + w) = (Pᵀ·γ): v̇ = y + W⁻ᵀ·Q·w. The triangular solve
-/// divides by R_jj damped, R_jj / (R_jj² + μ²), refined by a few sweeps:
-/// a direction in which the constraints are (nearly) redundant, at a
-/// singular position, is not divided by its vanishing R_jj. Working on B
-/// rather than on G·M⁻¹·Gᵀ = Bᵀ·B keeps the conditioning to cond(B).
+/// change ‖z − Wᵀ·y‖ of the tree's y = M⁻¹·r with Bᵀ·z = γ = −Ġ·v,
+/// B = W⁻¹·Gᵀ. Modified Gram–Schmidt with column pivoting gives B·P = Q·R,
+/// and z = Wᵀ·y + Q·w with R₁₁ᵀ·(Qᵀ·Wᵀ·y + w) = (Pᵀ·γ): v̇ = y + W⁻ᵀ·Q·w.
+/// The triangular solve divides by R_jj damped, R_jj / (R_jj² + μ²),
+/// refined by a few sweeps: a direction in which the constraints are
+/// (nearly) redundant, at a singular position, is not divided by its
+/// vanishing R_jj. Working on B rather than on G·M⁻¹·Gᵀ = Bᵀ·B keeps the
+/// conditioning to cond(B).
+///
+/// B's columns are kept as L⁻¹·Gᵀ (B = D^(−1/2)·L⁻¹·Gᵀ) with the inner
+/// product weighted by D⁻¹, which is B's own: no square root of D, and with
+/// t = D⁻¹·L⁻¹·r (so that y = L⁻ᵀ·t and Wᵀ·y = √D·t), Qᵀ·Wᵀ·y is the
+/// unweighted product with t and v̇ = L⁻ᵀ·(t + D⁻¹·Q·w) is one backward
+/// substitution. Each division by R_jj is a product with its reciprocal.
+/// What is saved is mostly latency: every step of the solve waits on the
+/// one before.
 ///
 /// With lambda given, also the constraint forces λ (row by row: Gᵀ·λ is
 /// their generalized force), from R₁₁·(Pᵀ·λ) = Qᵀ·(z − Wᵀ·y).
 template <class S, class T, class MM, class Motions>
 void constrained_accelerations(const S& scene, const Motions& motions, const MM& Mf, const ldlt_pivots<S::n_v, T>& f,
-                               const T* v, const T* y, T* vdot, T* lambda = nullptr) {
+                               const T* v, const T* rhs, T* vdot, T* lambda = nullptr) {
   using std::sqrt;
   constexpr int n = S::n_v, m = n_constraints<S>();
   const auto k = loop_kinematics_at<S>(scene, motions, v);
-  std::array<T, n> s;
-  for (int i = 0; i < n; ++i) s[i] = sqrt(f.inv_d[i]);
+  const auto& wt = f.inv_d;  // the inner product's weights
+  std::array<T, n> t;
+  ldlt_forward<n>(Mf, rhs, t.data());
+  for (int i = 0; i < n; ++i) t[i] *= wt[i];
   std::array<std::array<T, n>, m> B;
   std::array<T, m> gamma, norm2;
   std::array<int, m> p;
   for (int c = 0; c < m; ++c) {
     std::array<T, n> g;
     for (int i = 0; i < n; ++i) g[i] = k.G(c, i);
-    ldlt_forward_half<n>(Mf, s, g.data(), B[c].data());
+    ldlt_forward<n>(Mf, g.data(), B[c].data());
     gamma[c] = -k.bias[c];
     p[c] = c;
     norm2[c] = T(0);
-    for (int i = 0; i < n; ++i) norm2[c] += B[c][i] * B[c][i];
+    for (int i = 0; i < n; ++i) norm2[c] += wt[i] * B[c][i] * B[c][i];
   }
   T largest(0);
   // Each column's damping yardstick: its own squared norm in B, raised by
@@ -200,6 +211,7 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   // (and everything kept per row) into place, p[j] remembering the row's
   // original index, and R's columns with it.
   std::array<std::array<T, m>, m> R;
+  std::array<T, m> inv_r;
   std::array<T, m> norm2_0 = norm2;
   T repeats = T(constraint_redundancy) * drift;  // a remainder at most this fraction of its row's norm: repeated
   if (repeats < T(constraint_redundancy_floor)) repeats = T(constraint_redundancy_floor);
@@ -223,24 +235,23 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
     if (!(nn > T(1e-30) * largest)) break;  // exactly dependent: nothing left to damp
     const T r = sqrt(nn);
     R[j][j] = r;
-    for (int i = 0; i < n; ++i) B[j][i] /= r;
+    inv_r[j] = T(1) / r;
+    std::array<T, n> bw;  // the weighted column: its products with the others are B's
+    for (int i = 0; i < n; ++i) {
+      B[j][i] *= inv_r[j];
+      bw[i] = wt[i] * B[j][i];
+    }
     for (int c = j + 1; c < m; ++c) {
       T d(0);
-      for (int i = 0; i < n; ++i) d += B[j][i] * B[c][i];
+      for (int i = 0; i < n; ++i) d += bw[i] * B[c][i];
       R[j][c] = d;
       for (int i = 0; i < n; ++i) B[c][i] -= d * B[j][i];
       norm2[c] = T(0);
-      for (int i = 0; i < n; ++i) norm2[c] += B[c][i] * B[c][i];
+      for (int i = 0; i < n; ++i) norm2[c] += wt[i] * B[c][i] * B[c][i];
     }
     rank = j + 1;
   }
-  // z0 = Wᵀ·y = √D·Lᵀ·y, and u = Qᵀ·z0 + w from R₁₁ᵀ·u = (Pᵀ·γ)₁.
-  std::array<T, n> z0;
-  for (int i = 0; i < n; ++i) {
-    T x = y[i];
-    for (int kk = i + 1; kk < n; ++kk) x += Mf(kk, i) * y[kk];
-    z0[i] = x / s[i];
-  }
+  // u = Qᵀ·Wᵀ·y + w from R₁₁ᵀ·u = (Pᵀ·γ)₁.
   // Each direction's damped reciprocal R_jj / (R_jj² + μ²·‖B_c‖²), and how
   // much of R_jj the damping leaves out, e_j = μ²·‖B_c‖² / (R_jj² + μ²·‖B_c‖²):
   // a sweep shrinks direction j's error by about e_j.
@@ -259,7 +270,7 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
     for (int j = 0; j < rank; ++j) {
       T x = gamma[j];
       for (int i = 0; i < j; ++i) x -= R[i][j] * u[i];
-      u[j] = x / R[j][j];
+      u[j] = x * inv_r[j];
     }
   } else {
     std::array<T, m> res, du;
@@ -282,7 +293,7 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   for (int i = 0; i < n; ++i) dz[i] = T(0);
   for (int j = 0; j < rank; ++j) {
     T qz(0);
-    for (int i = 0; i < n; ++i) qz += B[j][i] * z0[i];
+    for (int i = 0; i < n; ++i) qz += B[j][i] * t[i];
     w[j] = u[j] - qz;
     for (int i = 0; i < n; ++i) dz[i] += w[j] * B[j][i];
   }
@@ -294,12 +305,11 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
       }
       T x = w[j];
       for (int c = j + 1; c < rank; ++c) x -= R[j][c] * lambda[p[c]];
-      lambda[p[j]] = x / R[j][j];
+      lambda[p[j]] = x * inv_r[j];
     }
   }
-  std::array<T, n> dv;
-  ldlt_backward_half<n>(Mf, s, dz.data(), dv.data());
-  for (int i = 0; i < n; ++i) vdot[i] = y[i] + dv[i];
+  for (int i = 0; i < n; ++i) dz[i] = t[i] + wt[i] * dz[i];
+  ldlt_backward<n>(Mf, dz.data(), vdot);
 }
 
 /// The outcome of a projection onto the loops' constraints.
