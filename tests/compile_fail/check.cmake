@@ -4,7 +4,10 @@
 #   MODE=ko: SRC with -DFLANGE_KO must fail, and the compiler output must
 #            contain every string in EXPECT (the diagnostic and its culprit),
 #            with exactly one error line and at most 25 lines in all.
-set(args -std=c++20 -fsyntax-only ${INCLUDES} ${SRC})
+#   PCH: the precompiled <flange/equations_of_motion.hpp> (compile_pch.cmake).
+include(${CMAKE_CURRENT_LIST_DIR}/../compile_pch.cmake)
+flange_pch_args(${SRC} pch)
+set(args -std=c++20 -fsyntax-only ${INCLUDES} ${pch} ${SRC})
 if(MODE STREQUAL "ko")
   list(APPEND args -DFLANGE_KO)
 endif()
