@@ -240,6 +240,8 @@ TEST_CASE("a sphere's overlap with a box: at a face, an edge, a corner, and from
   b.R.setIdentity();
   b.v.setZero();
   b.w.setZero();
+  b.a.setZero();
+  b.wd.setZero();
   auto at = [&](const Vec3d& c) {
     frame_kinematics<double> a = b;
     a.r = c;
