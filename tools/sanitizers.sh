@@ -41,12 +41,14 @@ elapsed() { echo $(( $(date +%s) - $1 ))s; }
 
 # Debug information as line tables only (-gline-tables-only, and no -g from
 # the Debug build type): a report's stack still names every file, line and
-# function, and loops_test compiles in 100 s instead of 120.
+# function, and loops_test compiles in 100 s instead of 120. Inlining is
+# left to the compiler (FLANGE_NO_FORCED_INLINE, detail/inline.hpp), as in
+# the unit tests: the same code paths, a quarter less compiler time.
 configure() {  # dir, flags, extra cmake args…
   local dir=$1 flags=$2
   shift 2
   cmake -S "$root" -B "$dir" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG= \
-        -DCMAKE_CXX_FLAGS="-O1 -gline-tables-only -fno-omit-frame-pointer $flags" \
+        -DCMAKE_CXX_FLAGS="-O1 -gline-tables-only -fno-omit-frame-pointer -DFLANGE_NO_FORCED_INLINE $flags" \
         -DCMAKE_EXE_LINKER_FLAGS="$flags" -DFLANGE_BUILD_EXAMPLES=OFF -DFLANGE_BUILD_BENCHMARKS=OFF "$@" >/dev/null
 }
 
