@@ -9,7 +9,8 @@
 // program, before any flange header) leaves inlining to the compiler: the
 // same numbers, from code that compiles faster and runs slower (GCC 12:
 // tests/chain_test.cpp at -O1 98 → 73 s of compiler, examples/robot_arm.cpp
-// at -O3 15.8 → 14.3 s). The unit tests build so; the stress tests, the
+// at -O3 15.8 → 14.3 s). The tests build so (all but no_heap_test; the
+// test inline.same_numbers holds the two builds to the same bits); the
 // examples and the benchmarks do not.
 #pragma once
 
