@@ -21,19 +21,7 @@
 
 #include "scale.hpp"
 
-namespace {
-double exponent(const std::vector<std::pair<double, double>>& pts) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (const auto& [x, y] : pts) {
-    sx += std::log(x);
-    sy += std::log(y);
-    sxx += std::log(x) * std::log(x);
-    sxy += std::log(x) * std::log(y);
-  }
-  const double n = double(pts.size());
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
-}  // namespace
+using rounds::exponent;
 
 int main() {
   std::printf("MuJoCo %s\n", mj_versionString());

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "../peers/mujoco_models.hpp"
+#include "../rounds.hpp"
 
 namespace scale {
 
@@ -47,27 +48,9 @@ inline std::vector<row>& rows() {
   return r;
 }
 
-/// Calls per timed block: enough for about 1 ms.
-template <class F>
-long calls_for(F&& f) {
-  long n = 1;
-  for (;;) {
-    const auto t0 = std::chrono::steady_clock::now();
-    for (long k = 0; k < n; ++k) f();
-    if (std::chrono::steady_clock::now() - t0 > std::chrono::microseconds(1000)) return n;
-    n *= 2;
-  }
-}
-template <class F>
-double block_ns(F&& f, long n) {
-  const auto t0 = std::chrono::steady_clock::now();
-  for (long k = 0; k < n; ++k) f();
-  return std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count() / double(n);
-}
-inline double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using rounds::block_ns;
+using rounds::calls_for;
+using rounds::median;
 
 /// Compares and times a scene (flange state x) against the MuJoCo model xml.
 template <class Scene>
