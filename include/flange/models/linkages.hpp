@@ -1,17 +1,20 @@
 // Closed-loop mechanisms with closed forms: the four-bar linkage (Grashof
-// crank-rocker, parallelogram) and the slider-crank, planar about z, each
-// with the closed-form kinematics its tests and examples compare against.
+// crank-rocker, parallelogram), the slider-crank and a row of parallelogram
+// windows, planar about z, each with the closed-form kinematics its tests,
+// examples and benchmarks compare against.
 //
 //   four-bar:     O2 ──crank a── A ──coupler b── B ──rocker c── O4, O4 = (d, 0)
 //   slider-crank: O ──crank r── A ──rod l── P, P on the x axis
+//   window row:   N + 1 posts on the ground line, N top bars between their tips
 //
 // Bars are uniform: mass m at the middle, I = m·L²/12 about it. Each loop
-// is closed by the joint written last ("rocker_pivot", "wrist_pin"), which
+// is closed by the joint written last ("rocker_pivot", "wrist_pin", "top_end<i>"), which
 // is cut (docs/loops.md); the state holds the tree's joints.
 #pragma once
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "flange/components/body.hpp"
 #include "flange/components/body_shape.hpp"
@@ -140,6 +143,43 @@ auto slider_crank(const Params& p) {
                connect<"crank.frame_b", "crank_pin.frame_a">, connect<"crank_pin.frame_b", "rod.frame_a">,
                connect<"world.frame_b", "slide.frame_a">, connect<"slide.frame_b", "piston.frame_a">,
                connect<"rod.frame_b", "wrist_pin.frame_a">, connect<"slide.frame_b", "wrist_pin.frame_b">);
+}
+
+struct window_row_params {
+  double width = 0.5, height = 1.0;     ///< the windows' pitch w along x and the posts' length h [m]
+  double m_post = 1.0, m_top = 0.5;     ///< [kg]
+  Vec3d g = Vec3d(0, -9.81, 0);
+};
+
+/// A row of N parallelogram windows, planar about z: N + 1 posts of length
+/// h pivot on the ground at x = i·w ("post_pivot<i>", q = the post's angle
+/// from the ground line), and N top bars of length w each join two posts,
+/// pinned to post i ("top_pin<i>", relative to the post) and to post i + 1
+/// ("top_end<i>", written last in its loop and cut). 2N + 1 links, N loops,
+/// 2N constraint rows; one degree of freedom: every post turns alike and the
+/// top bars stay level. With the posts flat (q = 0 or π) the top bars line
+/// up with them: a singular position of every loop at once. The loops share
+/// posts, so neighbouring windows' constraints are coupled and the others
+/// are not: the constraint solve's structure is banded.
+template <int N, class Params = window_row_params>
+auto window_row(const Params& p) {
+  static_assert(N >= 1, "window_row<N>: at least one window");
+  return [&]<int... I, int... K>(std::integer_sequence<int, I...>, std::integer_sequence<int, K...>) {
+    return scene(World<"world">({.g = p.g}),
+                 FixedTranslation<indexed_name<"ground", I>()>({.d = Vec3d(I * p.width, 0, 0)})...,
+                 Revolute<indexed_name<"post_pivot", I>(), axis::z>{}...,
+                 bar<indexed_name<"post", I>()>(p.height, p.m_post)...,
+                 Revolute<indexed_name<"top_pin", K>(), axis::z>{}...,
+                 bar<indexed_name<"top", K>()>(p.width, p.m_top)...,
+                 Revolute<indexed_name<"top_end", K>(), axis::z>{}...,
+                 connect<"world.frame_b", indexed_name<"ground", I>() + ".frame_a">...,
+                 connect<indexed_name<"ground", I>() + ".frame_b", indexed_name<"post_pivot", I>() + ".frame_a">...,
+                 connect<indexed_name<"post_pivot", I>() + ".frame_b", indexed_name<"post", I>() + ".frame_a">...,
+                 connect<indexed_name<"post", K>() + ".frame_b", indexed_name<"top_pin", K>() + ".frame_a">...,
+                 connect<indexed_name<"top_pin", K>() + ".frame_b", indexed_name<"top", K>() + ".frame_a">...,
+                 connect<indexed_name<"top", K>() + ".frame_b", indexed_name<"top_end", K>() + ".frame_a">...,
+                 connect<indexed_name<"post", K + 1>() + ".frame_b", indexed_name<"top_end", K>() + ".frame_b">...);
+  }(std::make_integer_sequence<int, N + 1>{}, std::make_integer_sequence<int, N>{});
 }
 
 /// The piston's position x(θ) = r·cos θ + √(l² − r²·sin² θ) and its first and
