@@ -143,11 +143,12 @@ template <class A, class S, class T, class M, class PM>
     mass_matrix<A>(scene, motions, Mm, scale.data());
     if constexpr (has_loops<S>) {
       ldlt_pivots<N, T> f;
-      if (const auto pivot = ldlt_factor<N>(Mm, f, scale.data()); pivot.index >= 0) [[unlikely]]
+      if (const auto pivot = ldlt_factor<N>(Mm, f, scale.data(), mass_factor<S>{}); pivot.index >= 0) [[unlikely]]
         singular_mass_matrix<S>(pivot, t, q, v);
       constrained_accelerations(scene, pose, Mm, f, v, r.data(), vdot, lambda);
     } else {
-      if (const auto pivot = solve_spd<N>(Mm, r.data(), vdot, scale.data()); pivot.index >= 0) [[unlikely]]
+      if (const auto pivot = solve_spd<N>(Mm, r.data(), vdot, scale.data(), mass_factor<S>{}); pivot.index >= 0)
+          [[unlikely]]
         singular_mass_matrix<S>(pivot, t, q, v);
     }
   }

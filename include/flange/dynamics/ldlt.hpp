@@ -1,5 +1,8 @@
-// The dense LDLᵀ solve of M·q̈ = τ − b, unrolled for a scene's fixed size,
-// with a relative pivot test that names the joint where M is (nearly) singular.
+// The LDLᵀ solve of M·q̈ = τ − b, unrolled for a scene's fixed size, with a
+// relative pivot test that names the joint where M is (nearly) singular;
+// dense, or over the entries that can be nonzero where those are known at
+// compile time (a tree's mass matrix with more than one branch:
+// mass_matrix.hpp), with the same arithmetic on them.
 #pragma once
 #include <array>
 #include <limits>
@@ -39,17 +42,134 @@ struct ldlt_pivots {
   std::array<T, N> inv_d;
 };
 
+/// Which entries of a symmetric N×N matrix can be nonzero (row > column
+/// only), known at compile time.
+template <int N>
+struct sparsity {
+  std::array<std::array<bool, N>, N> nz{};
+};
+
+/// The entries of L that can be nonzero when M's can be those of p: p and
+/// the fill of elimination in order (eliminating j joins every pair of rows
+/// below it that are nonzero in column j).
+template <int N>
+constexpr sparsity<N> factor_sparsity(sparsity<N> p) {
+  for (int j = 0; j < N; ++j)
+    for (int i = j + 1; i < N; ++i)
+      if (p.nz[i][j])
+        for (int k = i + 1; k < N; ++k)
+          if (p.nz[k][j]) p.nz[k][i] = true;
+  return p;
+}
+
+/// The factor's pattern as index lists, in the order the dense loops visit
+/// them: row i's columns k < i (rows[row_start[i] … row_start[i + 1])), column
+/// j's rows i > j (cols[col_start[j] …]), and for each of those entries
+/// (i, j), the k < j with L(i, k) and L(j, k) both nonzero (common[…]).
+template <int N, int NNZ, int NC>
+struct factor_lists {
+  std::array<int, N + 1> row_start{}, col_start{};
+  std::array<int, NNZ> row_cols{}, col_rows{};
+  std::array<int, NNZ + 1> common_start{};
+  std::array<int, NC> common{};
+};
+template <int N>
+constexpr int factor_nonzeros(const sparsity<N>& f) {
+  int n = 0;
+  for (int i = 0; i < N; ++i)
+    for (int k = 0; k < i; ++k) n += f.nz[i][k];
+  return n;
+}
+template <int N>
+constexpr int factor_common(const sparsity<N>& f) {
+  int n = 0;
+  for (int j = 0; j < N; ++j)
+    for (int i = j + 1; i < N; ++i)
+      if (f.nz[i][j])
+        for (int k = 0; k < j; ++k) n += f.nz[i][k] && f.nz[j][k];
+  return n;
+}
+template <int N, int NNZ, int NC>
+constexpr factor_lists<N, NNZ, NC> make_factor_lists(const sparsity<N>& f) {
+  factor_lists<N, NNZ, NC> l;
+  int e = 0;
+  for (int i = 0; i < N; ++i) {
+    l.row_start[i] = e;
+    for (int k = 0; k < i; ++k)
+      if (f.nz[i][k]) l.row_cols[e++] = k;
+  }
+  l.row_start[N] = e;
+  e = 0;
+  int c = 0;
+  for (int j = 0; j < N; ++j) {
+    l.col_start[j] = e;
+    for (int i = j + 1; i < N; ++i)
+      if (f.nz[i][j]) {
+        l.col_rows[e] = i;
+        l.common_start[e++] = c;
+        for (int k = 0; k < j; ++k)
+          if (f.nz[i][k] && f.nz[j][k]) l.common[c++] = k;
+      }
+  }
+  l.col_start[N] = e;
+  l.common_start[e] = c;
+  return l;
+}
+
+/// The factor's pattern for a matrix whose zeros are not known: every entry.
+struct dense_factor {
+  static constexpr bool sparse = false;
+};
+
+/// The factor's pattern for M's nonzeros given by Pattern::matrix() (a
+/// sparsity<N>): its lists, used where they leave out at least half of the
+/// dense loops' entries of L (with fewer left out, the dense loops' fixed
+/// bounds are faster).
+template <class Pattern, int N>
+struct sparse_factor {
+  static constexpr sparsity<N> fill = factor_sparsity(Pattern::matrix());
+  static constexpr int nnz = factor_nonzeros(fill);
+  static constexpr auto lists = make_factor_lists<N, nnz, factor_common(fill)>(fill);
+  static constexpr bool sparse = nnz < N * (N - 1) / 2 && 2 * nnz <= N * (N - 1) / 2;
+};
+
 /// Factors M = L·D·Lᵀ (no square roots). Stops at the first pivot d_j that
 /// is not above pivot_tolerance·scale[j] (a joint that moves nothing with
 /// inertia, or whose motion repeats other joints') and reports it.
-template <int N, class T, class MM>
-[[gnu::always_inline]] inline pivot_report<T> ldlt_factor(MM& M, ldlt_pivots<N, T>& f, const T* scale) {
+template <int N, class T, class MM, class F = dense_factor>
+[[gnu::always_inline]] inline pivot_report<T> ldlt_factor(MM& M, ldlt_pivots<N, T>& f, const T* scale, F = {}) {
   // Column by column: with v_k = L(j, k)·d_k for the row j in hand,
   //   d_j = M(j, j) − Σ_k L(j, k)·v_k,   L(i, j) = (M(i, j) − Σ_k L(i, k)·v_k) / d_j,
   // so each product L·D is formed once. The loop bounds are constants: the
   // compiler unrolls them into straight-line code.
   constexpr double tol = pivot_tolerance<N, T>();
   std::array<T, N> d;
+  if constexpr (F::sparse) {
+    // The same sums over the entries that can be nonzero, in the same order:
+    // the terms left out are exact zeros.
+    constexpr auto& l = F::lists;
+#pragma GCC unroll 16
+    for (int j = 0; j < N; ++j) {
+      std::array<T, N> v;
+      T dj = M(j, j);
+      for (int e = l.row_start[j]; e < l.row_start[j + 1]; ++e) {
+        const int k = l.row_cols[e];
+        v[k] = M(j, k) * d[k];
+        dj -= M(j, k) * v[k];
+      }
+      if (!(dj > T(tol) * scale[j])) [[unlikely]]
+        return {j, dj, scale[j]};
+      d[j] = dj;
+      f.inv_d[j] = T(1) / dj;
+      for (int e = l.col_start[j]; e < l.col_start[j + 1]; ++e) {
+        const int i = l.col_rows[e];
+        T x = M(i, j);
+        for (int c = l.common_start[e]; c < l.common_start[e + 1]; ++c) x -= M(i, l.common[c]) * v[l.common[c]];
+        M(i, j) = x * f.inv_d[j];
+      }
+    }
+    return {};
+  }
 #pragma GCC unroll 16
   for (int j = 0; j < N; ++j) {
     std::array<T, N> v;
@@ -76,8 +196,18 @@ template <int N, class T, class MM>
 
 /// a = L⁻¹·r and a = L⁻ᵀ·r: the halves of a solve with the factors of
 /// ldlt_factor (r and a may be one array).
-template <int N, class T, class MM>
-[[gnu::always_inline]] inline void ldlt_forward(const MM& M, const T* r, T* a) {
+template <int N, class T, class MM, class F = dense_factor>
+[[gnu::always_inline]] inline void ldlt_forward(const MM& M, const T* r, T* a, F = {}) {
+  if constexpr (F::sparse) {
+    constexpr auto& l = F::lists;
+#pragma GCC unroll 16
+    for (int i = 0; i < N; ++i) {
+      T x = r[i];
+      for (int e = l.row_start[i]; e < l.row_start[i + 1]; ++e) x -= M(i, l.row_cols[e]) * a[l.row_cols[e]];
+      a[i] = x;
+    }
+    return;
+  }
 #pragma GCC unroll 16
   for (int i = 0; i < N; ++i) {
     T x = r[i];
@@ -86,8 +216,18 @@ template <int N, class T, class MM>
     a[i] = x;
   }
 }
-template <int N, class T, class MM>
-[[gnu::always_inline]] inline void ldlt_backward(const MM& M, const T* r, T* a) {
+template <int N, class T, class MM, class F = dense_factor>
+[[gnu::always_inline]] inline void ldlt_backward(const MM& M, const T* r, T* a, F = {}) {
+  if constexpr (F::sparse) {
+    constexpr auto& l = F::lists;
+#pragma GCC unroll 16
+    for (int i = N - 1; i >= 0; --i) {
+      T x = r[i];
+      for (int e = l.col_start[i]; e < l.col_start[i + 1]; ++e) x -= M(l.col_rows[e], i) * a[l.col_rows[e]];
+      a[i] = x;
+    }
+    return;
+  }
 #pragma GCC unroll 16
   for (int i = N - 1; i >= 0; --i) {
     T x = r[i];
@@ -98,24 +238,24 @@ template <int N, class T, class MM>
 }
 
 /// a = M⁻¹·r from the factors of ldlt_factor (r and a may be one array).
-template <int N, class T, class MM>
-[[gnu::always_inline]] inline void ldlt_solve(const MM& M, const ldlt_pivots<N, T>& f, const T* r, T* a) {
-  ldlt_forward<N>(M, r, a);
+template <int N, class T, class MM, class F = dense_factor>
+[[gnu::always_inline]] inline void ldlt_solve(const MM& M, const ldlt_pivots<N, T>& f, const T* r, T* a, F = {}) {
+  ldlt_forward<N>(M, r, a, F{});
 #pragma GCC unroll 16
   for (int i = 0; i < N; ++i) a[i] *= f.inv_d[i];
-  ldlt_backward<N>(M, a, a);
+  ldlt_backward<N>(M, a, a, F{});
 }
 
 /// Solves M·a = r for a symmetric positive-definite M by an unrolled LDLᵀ,
 /// reporting a failed pivot (ldlt_factor) instead of solving.
 /// Always inlined: for a scene's small systems the call would cost more than
 /// a 2×2 solve.
-template <int N, class T, class MM>
-[[gnu::always_inline]] inline pivot_report<T> solve_spd(MM& M, const T* r, T* a, const T* scale) {
+template <int N, class T, class MM, class F = dense_factor>
+[[gnu::always_inline]] inline pivot_report<T> solve_spd(MM& M, const T* r, T* a, const T* scale, F = {}) {
   ldlt_pivots<N, T> f;
-  const auto p = ldlt_factor<N>(M, f, scale);
+  const auto p = ldlt_factor<N>(M, f, scale, F{});
   if (p.index < 0) [[likely]]
-    ldlt_solve<N>(M, f, r, a);
+    ldlt_solve<N>(M, f, r, a, F{});
   return p;
 }
 

@@ -19,6 +19,7 @@
 
 #include "flange/dynamics/ldlt.hpp"
 #include "flange/dynamics/loops.hpp"
+#include "flange/dynamics/mass_matrix.hpp"
 
 namespace flange::detail {
 
@@ -163,7 +164,7 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   const auto k = loop_kinematics_at<S>(scene, motions, v);
   const auto& wt = f.inv_d;  // the inner product's weights
   std::array<T, n> t;
-  ldlt_forward<n>(Mf, rhs, t.data());
+  ldlt_forward<n>(Mf, rhs, t.data(), mass_factor<S>{});
   for (int i = 0; i < n; ++i) t[i] *= wt[i];
   std::array<std::array<T, n>, m> B;
   std::array<T, m> gamma, norm2;
@@ -171,7 +172,7 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   for (int c = 0; c < m; ++c) {
     std::array<T, n> g;
     for (int i = 0; i < n; ++i) g[i] = k.G(c, i);
-    ldlt_forward<n>(Mf, g.data(), B[c].data());
+    ldlt_forward<n>(Mf, g.data(), B[c].data(), mass_factor<S>{});
     gamma[c] = -k.bias[c];
     p[c] = c;
     norm2[c] = T(0);
@@ -309,7 +310,7 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
     }
   }
   for (int i = 0; i < n; ++i) dz[i] = t[i] + wt[i] * dz[i];
-  ldlt_backward<n>(Mf, dz.data(), vdot);
+  ldlt_backward<n>(Mf, dz.data(), vdot, mass_factor<S>{});
 }
 
 /// The outcome of a projection onto the loops' constraints.

@@ -13,11 +13,13 @@
 // branches are zero and are written as such (branch_pairs). In the planar
 // algebra the composite inertia is m, the in-plane first moment and I_KK.
 #pragma once
+#include <algorithm>
 #include <array>
 
 #include "flange/detail/inline.hpp"
 
 #include "flange/dynamics/kinematics.hpp"
+#include "flange/dynamics/ldlt.hpp"
 #include "flange/math/congruence.hpp"
 #include "flange/dynamics/newton_euler.hpp"
 
@@ -54,6 +56,23 @@ constexpr auto branch_pairs() {
       }
   return pairs;
 }
+
+/// The entries of M that can be nonzero: those between the rates of one
+/// link and of its ancestors (branch_pairs' complement).
+template <class S>
+struct mass_sparsity {
+  static constexpr sparsity<S::n_v> matrix() {
+    sparsity<S::n_v> p;
+    for (int i = 0; i < S::n_v; ++i)
+      for (int j = 0; j < i; ++j) p.nz[i][j] = true;
+    for (const auto& [i, j] : branch_pairs<S>()) p.nz[std::max(i, j)][std::min(i, j)] = false;
+    return p;
+  }
+};
+/// The LDLᵀ factor of M as far as its entries can be nonzero (ldlt.hpp):
+/// sparse for a tree whose branches leave most of M zero.
+template <class S>
+using mass_factor = sparse_factor<mass_sparsity<S>, S::n_v>;
 
 /// A subtree's inertia in the composite types of algebra A (algebra.hpp).
 template <class A, class T>
@@ -199,7 +218,7 @@ void fold_mass_matrix(const S& scene, Model& model) {
   std::array<double, N> scale;
   mass_matrix<spatial_algebra>(scene, motions, M, scale.data());
   ldlt_pivots<N, double> f;
-  if (const auto p = ldlt_factor<N>(M, f, scale.data()); p.index >= 0) {
+  if (const auto p = ldlt_factor<N>(M, f, scale.data(), mass_factor<S>{}); p.index >= 0) {
     model.mass_pivot = p;
     return;
   }
@@ -210,7 +229,7 @@ void fold_mass_matrix(const S& scene, Model& model) {
     for (int j = 0; j < LI::nv; ++j) {
       std::array<double, N> e{}, x;
       e[LI::v + j] = 1;
-      ldlt_solve<N>(M, f, e.data(), x.data());
+      ldlt_solve<N>(M, f, e.data(), x.data(), mass_factor<S>{});
       for (int i = 0; i < LI::nv; ++i) model.inverse_mass[constant_mass_offset<S, L>() + i * LI::nv + j] = x[LI::v + i];
     }
   });
