@@ -13,10 +13,14 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
+#include <type_traits>
 
+#include "flange/detail/inline.hpp"
 #include "flange/dynamics/ldlt.hpp"
 #include "flange/dynamics/loops.hpp"
 #include "flange/dynamics/mass_matrix.hpp"
@@ -133,6 +137,29 @@ inline constexpr double constraint_sweep_skip = 1e-4;
 inline constexpr double constraint_redundancy = 100;
 inline constexpr double constraint_redundancy_floor = 1e-10;
 
+/// The rates from which constrained_accelerations tracks which rows of B's
+/// columns can be nonzero (where M's factor is sparse): below, visiting
+/// every row costs less than finding the ones to visit.
+inline constexpr int sparse_columns_from = 16;
+
+/// Which of a column's N rows can be nonzero, a bit each.
+template <int N>
+using rows_mask = std::array<std::uint64_t, (N + 63) / 64>;
+/// The rows of x[0 … N) that are not exactly zero.
+template <int N, class T>
+rows_mask<N> nonzero_rows(const T* x) {
+  rows_mask<N> r{};
+  for (int i = 0; i < N; ++i)
+    if (x[i] != T(0)) r[i / 64] |= std::uint64_t(1) << (i % 64);
+  return r;
+}
+/// f(i) for each row i in r, in increasing order.
+template <std::size_t W, class F>
+FLANGE_INLINE void for_rows(const std::array<std::uint64_t, W>& r, F&& f) {
+  for (std::size_t w = 0; w < W; ++w)
+    for (std::uint64_t bits = r[w]; bits; bits &= bits - 1) f(int(w * 64) + std::countr_zero(bits));
+}
+
 /// v̇ for the constrained equations of motion, given the factors of M
 /// (ldlt.hpp) and r = τ − b.
 ///
@@ -169,14 +196,29 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   std::array<std::array<T, n>, m> B;
   std::array<T, m> gamma, norm2;
   std::array<int, m> p;
+  // Where M's factor is sparse (a tree with branches that share no joints)
+  // B's columns are too: each keeps the rows that can be nonzero, and the
+  // products, updates and norms below visit only those. What they leave out
+  // are exact zeros, so the results are the dense loops' to the last bit.
+  // (Floating-point T only: a dual number's zero value may carry tangents.
+  // From 16 rates on: below, the dense loops are faster.)
+  constexpr bool sparse = mass_factor<S>::sparse && std::is_floating_point_v<T> && n >= sparse_columns_from;
+  std::array<rows_mask<n>, m> support;
+  auto norm_of = [&](int c) FLANGE_INLINE_LAMBDA {
+    T s(0);
+    if constexpr (sparse) for_rows(support[c], [&](int i) FLANGE_INLINE_LAMBDA { s += wt[i] * B[c][i] * B[c][i]; });
+    else
+      for (int i = 0; i < n; ++i) s += wt[i] * B[c][i] * B[c][i];
+    return s;
+  };
   for (int c = 0; c < m; ++c) {
     std::array<T, n> g;
     for (int i = 0; i < n; ++i) g[i] = k.G(c, i);
     ldlt_forward<n>(Mf, g.data(), B[c].data(), mass_factor<S>{});
     gamma[c] = -k.bias[c];
     p[c] = c;
-    norm2[c] = T(0);
-    for (int i = 0; i < n; ++i) norm2[c] += wt[i] * B[c][i] * B[c][i];
+    if constexpr (sparse) support[c] = nonzero_rows<n>(B[c].data());
+    norm2[c] = norm_of(c);
   }
   T largest(0);
   // Each column's damping yardstick: its own squared norm in B, raised by
@@ -228,6 +270,7 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
       std::swap(norm2[j], norm2[best]);
       std::swap(norm2_0[j], norm2_0[best]);
       std::swap(own[j], own[best]);
+      if constexpr (sparse) std::swap(support[j], support[best]);
       std::swap(gamma[j], gamma[best]);
       std::swap(p[j], p[best]);
       for (int i = 0; i < j; ++i) std::swap(R[i][j], R[i][best]);
@@ -242,13 +285,27 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
       B[j][i] *= inv_r[j];
       bw[i] = wt[i] * B[j][i];
     }
-    for (int c = j + 1; c < m; ++c) {
-      T d(0);
-      for (int i = 0; i < n; ++i) d += bw[i] * B[c][i];
-      R[j][c] = d;
-      for (int i = 0; i < n; ++i) B[c][i] -= d * B[j][i];
-      norm2[c] = T(0);
-      for (int i = 0; i < n; ++i) norm2[c] += wt[i] * B[c][i] * B[c][i];
+    if constexpr (sparse) {
+      std::array<int, n> rows;
+      int count = 0;
+      for_rows(support[j], [&](int i) FLANGE_INLINE_LAMBDA { rows[count++] = i; });
+      for (int c = j + 1; c < m; ++c) {
+        T d(0);
+        for (int e = 0; e < count; ++e) d += bw[rows[e]] * B[c][rows[e]];
+        R[j][c] = d;
+        if (d == T(0)) continue;  // the update would subtract zeros
+        for (int e = 0; e < count; ++e) B[c][rows[e]] -= d * B[j][rows[e]];
+        for (int w = 0; w < int(support[c].size()); ++w) support[c][w] |= support[j][w];
+        norm2[c] = norm_of(c);
+      }
+    } else {
+      for (int c = j + 1; c < m; ++c) {
+        T d(0);
+        for (int i = 0; i < n; ++i) d += bw[i] * B[c][i];
+        R[j][c] = d;
+        for (int i = 0; i < n; ++i) B[c][i] -= d * B[j][i];
+        norm2[c] = norm_of(c);
+      }
     }
     rank = j + 1;
   }
