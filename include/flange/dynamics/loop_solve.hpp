@@ -86,8 +86,14 @@ int solve_semidefinite(Eigen::Matrix<T, M, M>& A, const T* b, T* x) {
     rank = j + 1;
     // L's rows are kept by original index, so that later swaps of p do not move them.
     for (int i = j + 1; i < M; ++i) L(p[i], j) = A(p[i], p[j]) / dj;
+    // The update only where L's column is not exactly zero (elsewhere it
+    // subtracts zeros): constraints that share no joints leave A sparse.
+    std::array<int, M> nz;
+    int count = 0;
     for (int i = j + 1; i < M; ++i)
-      for (int k = j + 1; k < M; ++k) A(p[i], p[k]) -= L(p[i], j) * L(p[k], j) * dj;
+      if (L(p[i], j) != T(0)) nz[count++] = p[i];
+    for (int a = 0; a < count; ++a)
+      for (int b = 0; b < count; ++b) A(nz[a], nz[b]) -= L(nz[a], j) * L(nz[b], j) * dj;
   }
   std::array<T, M> c;
   for (int i = 0; i < rank; ++i) {
@@ -370,6 +376,30 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   ldlt_backward<n>(Mf, dz.data(), vdot, mass_factor<S>{});
 }
 
+/// G·Gᵀ. From sparse_columns_from rates on, each entry is summed over the
+/// joints in order where both rows are not exactly zero: a row of G touches
+/// only the joints from its cut's two frames to the root, so constraints
+/// that share no joints cost nothing.
+template <int M, int N>
+Eigen::Matrix<double, M, M> gram(const Eigen::Matrix<double, M, N>& G) {
+  if constexpr (N < sparse_columns_from) {
+    return G * G.transpose();  // small: Eigen's unrolled product is faster than finding the nonzeros
+  } else {
+    Eigen::Matrix<double, M, M> A = Eigen::Matrix<double, M, M>::Zero();
+    std::array<int, M> rows;
+    for (int j = 0; j < N; ++j) {
+      int count = 0;
+      for (int c = 0; c < M; ++c)
+        if (G(c, j) != 0) rows[count++] = c;
+      for (int a = 0; a < count; ++a)
+        for (int b = 0; b <= a; ++b) A(rows[a], rows[b]) += G(rows[a], j) * G(rows[b], j);
+    }
+    for (int c = 0; c < M; ++c)
+      for (int d = 0; d < c; ++d) A(d, c) = A(c, d);
+    return A;
+  }
+}
+
 /// The outcome of a projection onto the loops' constraints.
 struct closure {
   double phi = 0;        ///< max |Φ_i| left (metres for translation rows, radians for rotation rows)
@@ -467,7 +497,7 @@ closure project_onto_loops(const S& scene, double* q, double* v, const std::arra
     };
     // Δv = G_fᵀ·(G_f·G_fᵀ)⁺·rhs
     auto least_change = [&](const Eigen::Matrix<double, m, n>& G, const std::array<double, m>& rhs) {
-      Eigen::Matrix<double, m, m> A = G * G.transpose();
+      Eigen::Matrix<double, m, m> A = gram(G);
       std::array<double, m> mu;
       solve_semidefinite<m>(A, rhs.data(), mu.data());
       Eigen::Matrix<double, n, 1> dv = G.transpose() * Eigen::Map<const Eigen::Matrix<double, m, 1>>(mu.data());
