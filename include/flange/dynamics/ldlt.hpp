@@ -7,6 +7,8 @@
 #include <array>
 #include <limits>
 
+#include "flange/detail/inline.hpp"
+
 namespace flange::detail {
 
 /// The machine epsilon of a scalar type (of its value part for dual numbers).
@@ -119,6 +121,7 @@ constexpr factor_lists<N, NNZ, NC> make_factor_lists(const sparsity<N>& f) {
 /// The factor's pattern for a matrix whose zeros are not known: every entry.
 struct dense_factor {
   static constexpr bool sparse = false;
+  static constexpr int lists = 0;
 };
 
 /// The factor's pattern for M's nonzeros given by Pattern::matrix() (a
@@ -144,51 +147,42 @@ template <int N, class T, class MM, class F = dense_factor>
   // compiler unrolls them into straight-line code.
   constexpr double tol = pivot_tolerance<N, T>();
   std::array<T, N> d;
-  if constexpr (F::sparse) {
-    // The same sums over the entries that can be nonzero, in the same order:
-    // the terms left out are exact zeros.
-    constexpr auto& l = F::lists;
+  // With F::sparse, the same sums over the entries that can be nonzero, in
+  // the same order: the terms left out are exact zeros.
+  [[maybe_unused]] constexpr auto& l = F::lists;
 #pragma GCC unroll 16
-    for (int j = 0; j < N; ++j) {
-      std::array<T, N> v;
-      T dj = M(j, j);
-      for (int e = l.row_start[j]; e < l.row_start[j + 1]; ++e) {
-        const int k = l.row_cols[e];
-        v[k] = M(j, k) * d[k];
-        dj -= M(j, k) * v[k];
-      }
-      if (!(dj > T(tol) * scale[j])) [[unlikely]]
-        return {j, dj, scale[j]};
-      d[j] = dj;
-      f.inv_d[j] = T(1) / dj;
+  for (int j = 0; j < N; ++j) {
+    std::array<T, N> v;
+    T dj = M(j, j);
+    auto row_term = [&](int k) FLANGE_INLINE_LAMBDA {
+      v[k] = M(j, k) * d[k];
+      dj -= M(j, k) * v[k];
+    };
+    if constexpr (F::sparse) {
+      for (int e = l.row_start[j]; e < l.row_start[j + 1]; ++e) row_term(l.row_cols[e]);
+    } else {
+#pragma GCC unroll 16
+      for (int k = 0; k < j; ++k) row_term(k);
+    }
+    if (!(dj > T(tol) * scale[j])) [[unlikely]]
+      return {j, dj, scale[j]};
+    d[j] = dj;
+    f.inv_d[j] = T(1) / dj;
+    if constexpr (F::sparse) {
       for (int e = l.col_start[j]; e < l.col_start[j + 1]; ++e) {
         const int i = l.col_rows[e];
         T x = M(i, j);
         for (int c = l.common_start[e]; c < l.common_start[e + 1]; ++c) x -= M(i, l.common[c]) * v[l.common[c]];
         M(i, j) = x * f.inv_d[j];
       }
-    }
-    return {};
-  }
+    } else {
 #pragma GCC unroll 16
-  for (int j = 0; j < N; ++j) {
-    std::array<T, N> v;
-    T dj = M(j, j);
+      for (int i = j + 1; i < N; ++i) {
+        T x = M(i, j);
 #pragma GCC unroll 16
-    for (int k = 0; k < j; ++k) {
-      v[k] = M(j, k) * d[k];
-      dj -= M(j, k) * v[k];
-    }
-    if (!(dj > T(tol) * scale[j])) [[unlikely]]
-      return {j, dj, scale[j]};
-    d[j] = dj;
-    f.inv_d[j] = T(1) / dj;
-#pragma GCC unroll 16
-    for (int i = j + 1; i < N; ++i) {
-      T x = M(i, j);
-#pragma GCC unroll 16
-      for (int k = 0; k < j; ++k) x -= M(i, k) * v[k];
-      M(i, j) = x * f.inv_d[j];  // L(i, j), stored below the diagonal
+        for (int k = 0; k < j; ++k) x -= M(i, k) * v[k];
+        M(i, j) = x * f.inv_d[j];  // L(i, j), stored below the diagonal
+      }
     }
   }
   return {};
