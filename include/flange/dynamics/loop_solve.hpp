@@ -24,6 +24,7 @@
 #include "flange/dynamics/ldlt.hpp"
 #include "flange/dynamics/loops.hpp"
 #include "flange/dynamics/mass_matrix.hpp"
+#include "flange/math/dual.hpp"
 
 namespace flange::detail {
 
@@ -151,12 +152,13 @@ inline constexpr int sparse_columns_from = 16;
 /// Which of a column's N rows can be nonzero, a bit each.
 template <int N>
 using rows_mask = std::array<std::uint64_t, (N + 63) / 64>;
-/// The rows of x[0 … N) that are not exactly zero.
+/// The rows of x[0 … N) that are not exactly zero (exactly_zero: a dual
+/// number's derivatives too).
 template <int N, class T>
 rows_mask<N> nonzero_rows(const T* x) {
   rows_mask<N> r{};
   for (int i = 0; i < N; ++i)
-    if (x[i] != T(0)) r[i / 64] |= std::uint64_t(1) << (i % 64);
+    if (!exactly_zero(x[i])) r[i / 64] |= std::uint64_t(1) << (i % 64);
   return r;
 }
 /// f(i) for each row i in r, in increasing order.
@@ -205,10 +207,10 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   // Where M's factor is sparse (a tree with branches that share no joints)
   // B's columns are too: each keeps the rows that can be nonzero, and the
   // products, updates and norms below visit only those. What they leave out
-  // are exact zeros, so the results are the dense loops' to the last bit.
-  // (Floating-point T only: a dual number's zero value may carry tangents.
-  // From 16 rates on: below, the dense loops are faster.)
-  constexpr bool sparse = mass_factor<S>::sparse && std::is_floating_point_v<T> && n >= sparse_columns_from;
+  // are exact zeros (a dual number's with its derivatives), so the results
+  // are the dense loops' to the last bit. From 16 rates on: below, the dense
+  // loops are faster.
+  constexpr bool sparse = mass_factor<S>::sparse && n >= sparse_columns_from;
   std::array<rows_mask<n>, m> support;
   auto norm_of = [&](int c) FLANGE_INLINE_LAMBDA {
     T s(0);
@@ -299,7 +301,7 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
         T d(0);
         for (int e = 0; e < count; ++e) d += bw[rows[e]] * B[c][rows[e]];
         R[j][c] = d;
-        if (d == T(0)) continue;  // the update would subtract zeros
+        if (exactly_zero(d)) continue;  // the update would subtract zeros
         for (int e = 0; e < count; ++e) B[c][rows[e]] -= d * B[j][rows[e]];
         for (int w = 0; w < int(support[c].size()); ++w) support[c][w] |= support[j][w];
         norm2[c] = norm_of(c);

@@ -7,10 +7,20 @@
 #include <cmath>
 #include <limits>
 #include <ostream>
+#include <type_traits>
 
 #include <Eigen/Core>
 
 namespace flange {
+
+/// Whether x is exactly zero: for a floating-point scalar, x == 0; for a
+/// dual number (below), its value and its derivatives. A product with it
+/// adds nothing to a sum, value or derivative.
+template <class T>
+  requires std::is_floating_point_v<T>
+constexpr bool exactly_zero(T x) {
+  return x == T(0);
+}
 
 template <class T, int N>
 struct dual {
@@ -111,6 +121,14 @@ struct dual {
     return true;
   }
   friend std::ostream& operator<<(std::ostream& os, const dual& a) { return os << a.v; }
+  /// exactly_zero (above) of a dual: its value and its derivatives (a == 0
+  /// compares values only).
+  friend bool exactly_zero(const dual& a) {
+    if (!exactly_zero(a.v)) return false;
+    for (const auto& x : a.d)
+      if (!exactly_zero(x)) return false;
+    return true;
+  }
 };
 
 }  // namespace flange
