@@ -121,7 +121,6 @@ constexpr factor_lists<N, NNZ, NC> make_factor_lists(const sparsity<N>& f) {
 /// The factor's pattern for a matrix whose zeros are not known: every entry.
 struct dense_factor {
   static constexpr bool sparse = false;
-  static constexpr int lists = 0;
 };
 
 /// The factor's pattern for M's nonzeros given by Pattern::matrix() (a
@@ -148,8 +147,7 @@ template <int N, class T, class MM, class F = dense_factor>
   constexpr double tol = pivot_tolerance<N, T>();
   std::array<T, N> d;
   // With F::sparse, the same sums over the entries that can be nonzero, in
-  // the same order: the terms left out are exact zeros.
-  [[maybe_unused]] constexpr auto& l = F::lists;
+  // the same order (F::lists): the terms left out are exact zeros.
 #pragma GCC unroll 16
   for (int j = 0; j < N; ++j) {
     std::array<T, N> v;
@@ -159,6 +157,7 @@ template <int N, class T, class MM, class F = dense_factor>
       dj -= M(j, k) * v[k];
     };
     if constexpr (F::sparse) {
+      constexpr auto& l = F::lists;
       for (int e = l.row_start[j]; e < l.row_start[j + 1]; ++e) row_term(l.row_cols[e]);
     } else {
 #pragma GCC unroll 16
@@ -169,6 +168,7 @@ template <int N, class T, class MM, class F = dense_factor>
     d[j] = dj;
     f.inv_d[j] = T(1) / dj;
     if constexpr (F::sparse) {
+      constexpr auto& l = F::lists;
       for (int e = l.col_start[j]; e < l.col_start[j + 1]; ++e) {
         const int i = l.col_rows[e];
         T x = M(i, j);
