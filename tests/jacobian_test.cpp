@@ -1,6 +1,11 @@
 // The exact Jacobian from dual numbers against central finite differences, and
 // rosenbrock4 driven by it.
 #include <catch2/catch.hpp>
+
+#include <limits>
+#include <string>
+
+#include <flange/models/linkages.hpp>
 #include <flange/simulate/jacobian.hpp>
 #include <flange/simulate/rosenbrock4.hpp>
 #include <flange/simulate/odeint.hpp>
@@ -79,6 +84,57 @@ TEST_CASE("the dual-number Jacobian matches finite differences") {
       check_jacobian(chain, 0.0, x);
     }
   }
+  SECTION("a row of 8 loop windows: the solves over M's and B's nonzeros") {
+    // 17 rates, M block-diagonal: the sparse factor and the QR's row
+    // tracking (loop_solve.hpp) run on dual numbers. On the loops at θ, the
+    // row has one degree of freedom with J·θ̈ = −C·cos θ (J and C from the
+    // masses, see models::window_row): along the loops' tangent (every post
+    // +δ, every top pin −δ) the Jacobian gives ∂θ̈/∂θ = C·sin θ / J, and
+    // along the same direction in the rates 0 (θ̈ does not depend on θ̇).
+    const models::window_row_params p{};
+    const auto row = models::window_row<8>(p);
+    using S = decltype(row);
+    constexpr int n = S::n_q + S::n_v;
+    const double th = 1.2;
+    S::state_type x{};
+    std::array<double, n> tangent{};
+    for (int i = 0; i <= 8; ++i) {
+      const int k = S::q_offset("post_pivot" + std::to_string(i));
+      x[k] = th;
+      x[S::n_q + k] = 0.7;
+      tangent[k] = 1;
+    }
+    for (int i = 0; i < 8; ++i) {
+      const int k = S::q_offset("top_pin" + std::to_string(i));
+      x[k] = -th;
+      x[S::n_q + k] = -0.7;
+      tangent[k] = -1;
+    }
+    close_loops<"post_pivot0">(row, x);
+    const double h = p.height, g = -p.g.y(), J = 9 * p.m_post * h * h / 3 + 8 * p.m_top * h * h;
+    const double C = (9 * p.m_post * h / 2 + 8 * p.m_top * h) * g;
+    const auto Jx = jacobian(row, 0.0, x);
+    const Eigen::Matrix<double, n, 1> t = Eigen::Map<const Eigen::Matrix<double, n, 1>>(tangent.data());
+    Eigen::Matrix<double, n, 1> tv = Eigen::Matrix<double, n, 1>::Zero();
+    tv.tail<S::n_v>() = t.head<S::n_q>();
+    const Eigen::Matrix<double, n, 1> along_q = Jx * t, along_v = Jx * tv;
+    const double expect = C * std::sin(th) / J;  // 2.3 s⁻²
+    for (int i = 0; i < S::n_v; ++i) {
+      INFO("rate " << i);
+      // round-off of a 17-rate solve: a few ε times |J|'s entries (up to about 100)
+      CHECK(std::abs(along_q(S::n_q + i) - t(i) * expect) <= 1e-11);
+      CHECK(std::abs(along_v(S::n_q + i)) <= 1e-11);
+      CHECK(along_q(i) == 0.0);  // q̇ = v does not depend on q
+      CHECK(along_v(i) == t(i));
+    }
+    // Off the loops (by up to 1e-3), against central differences.
+    for (int k = 0; k < 3; ++k) {
+      auto y = x;
+      for (int i = 0; i < S::n_q; ++i) y[i] += test::uniform(rng, -1e-3, 1e-3);
+      for (int i = S::n_q; i < n; ++i) y[i] = test::uniform(rng, -1, 1);
+      check_jacobian(row, 0.0, y);
+    }
+  }
   SECTION("branched spatial tree with every joint and force element") {
     constexpr auto shape = models::random_tree_shape(3, 8, false);
     const auto tree = models::tree<shape>(test::tree_params<shape.n>(rng));
@@ -88,6 +144,19 @@ TEST_CASE("the dual-number Jacobian matches finite differences") {
       check_jacobian(tree, 0.0, x);
     }
   }
+}
+
+TEST_CASE("a dual number is exactly zero only with its derivatives") {
+  // The loop solve skips products with exact zeros (loop_solve.hpp); a
+  // coefficient whose value vanishes at this state but not its derivative
+  // (sin θ at θ = 0) must not be skipped.
+  using D = dual<double, 2>;
+  CHECK(exactly_zero(D(0.0)));
+  CHECK_FALSE(exactly_zero(D::variable(0.0, 1)));
+  CHECK_FALSE(exactly_zero(D(1e-300)));
+  CHECK(exactly_zero(0.0));
+  CHECK(exactly_zero(-0.0));
+  CHECK_FALSE(exactly_zero(std::numeric_limits<double>::denorm_min()));
 }
 
 TEST_CASE("rosenbrock4 with the exact Jacobian converges to the tight reference") {
