@@ -380,46 +380,56 @@ int turned_over_cut(const S& scene, const double* q) {
   return found;
 }
 
-/// Whether link A is link L or one of its ancestors.
-template <class S>
-constexpr bool on_path(int A, int L) {
-  for (; L > 0; L = S::tree.link_parent[L])
-    if (L == A) return true;
-  return false;
+/// The links from the World's child down to link Link (Link included;
+/// none for the World): the links whose joints move a frame on Link.
+template <class S, int Link>
+constexpr auto path_from_root() {
+  constexpr int depth = [] {
+    int d = 0;
+    for (int L = Link; L > 0; L = S::tree.link_parent[L]) ++d;
+    return d;
+  }();
+  std::array<int, depth> p{};
+  int i = depth;
+  for (int L = Link; L > 0; L = S::tree.link_parent[L]) p[--i] = L;
+  return p;
 }
 
 /// Adds to G's row the row's coefficients (n on ω, f on the velocity of the
 /// point p) times the motion subspace of every joint between the World and
-/// link Link: the columns J's of a frame on that link.
+/// link Link: the columns J's of a frame on that link, rate j's at
+/// row[j·stride]. Only the links on that path are visited (and
+/// instantiated).
 template <class S, int Link, class T, class Motions, class Poses>
 FLANGE_INLINE void add_frame_jacobian(const Motions& motions, const Poses& pose, const Vec3<T>& n, const Vec3<T>& f,
-                                      const Vec3<T>& p, T* row) {
-  for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
-    constexpr int L = decltype(l)::value;
-    if constexpr (on_path<S>(L, Link)) {
-      using LI = link_info<S, L>;
-      const auto& m = std::get<L - 1>(motions);
-      const link_pose<T>& P = pose[L];
-      // With the point's lever arm folded into the torque: n·ω + f·(v + ω × (p − r)) = (n + (p − r) × f)·ω + f·v.
-      // In a planar scene ω is along the normal k and every R turns about k:
-      // of R·(n + (p − r) × f) only component k is read, R·f stays in the
-      // plane (the typed forms of kinematics.hpp).
-      constexpr int k = planar_axis<S>();
-      constexpr int in_plane = k >= 0 ? 7 & ~(1 << k) : 7;
-      const auto& R = typed_rotation<k>(P);
-      const auto nn = rot(R, typed_angular<k>(Vec3<T>(n + (p - P.r).cross(f))));
-      const auto ff = rot(R, to_svec<in_plane>(f));
-      [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
-        // Each column's typed parts (a revolute's along one axis, no linear
-        // part) pick the components of nn and ff that are computed at all.
-        ((row[LI::v + K] += [&] {
-           const auto c = m.template col<K>();
-           return value_of<T>(dot(nn, c.ang) + dot(ff, c.lin));
-         }()),
-         ...);
-      }(std::make_integer_sequence<int, LI::nv>{});
-    }
-  });
+                                      const Vec3<T>& p, T* row, int stride = 1) {
+  static constexpr auto path = path_from_root<S, Link>();
+  auto add = [&]<int L>(std::integral_constant<int, L>) FLANGE_INLINE_LAMBDA {
+    using LI = link_info<S, L>;
+    const auto& m = std::get<L - 1>(motions);
+    const link_pose<T>& P = pose[L];
+    // With the point's lever arm folded into the torque: n·ω + f·(v + ω × (p − r)) = (n + (p − r) × f)·ω + f·v.
+    // In a planar scene ω is along the normal k and every R turns about k:
+    // of R·(n + (p − r) × f) only component k is read, R·f stays in the
+    // plane (the typed forms of kinematics.hpp).
+    constexpr int k = planar_axis<S>();
+    constexpr int in_plane = k >= 0 ? 7 & ~(1 << k) : 7;
+    const auto& R = typed_rotation<k>(P);
+    const auto nn = rot(R, typed_angular<k>(Vec3<T>(n + (p - P.r).cross(f))));
+    const auto ff = rot(R, to_svec<in_plane>(f));
+    [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
+      // Each column's typed parts (a revolute's along one axis, no linear
+      // part) pick the components of nn and ff that are computed at all.
+      ((row[(LI::v + K) * stride] += [&] {
+         const auto c = m.template col<K>();
+         return value_of<T>(dot(nn, c.ang) + dot(ff, c.lin));
+       }()),
+       ...);
+    }(std::make_integer_sequence<int, LI::nv>{});
+  };
+  [&]<std::size_t... I>(std::index_sequence<I...>) FLANGE_INLINE_LAMBDA {
+    (add(std::integral_constant<int, path[I]>{}), ...);
+  }(std::make_index_sequence<path.size()>{});
 }
 
 /// The loops' constraints at (q, v): Φ(q), Φ̇ = G·v, G, Ġ·v, and each row's
@@ -447,10 +457,8 @@ FLANGE_INLINE loop_terms<S, T> loop_kinematics_at(const S& scene, const Motions&
       for (int i = cut_row<S, decltype(k)::value>(); i < cut_row<S, decltype(k)::value>() + CI::rows; ++i) {
         const auto& w = r.rows[i];
         T* g = r.G.data() + i;  // column-major: row i, stride m
-        std::array<T, S::n_v> row{};
-        add_frame_jacobian<S, CI::link_a>(motions, ls.pose, w.wa, w.va, a.r, row.data());
-        add_frame_jacobian<S, CI::link_b>(motions, ls.pose, w.wb, w.vb, b.r, row.data());
-        for (int j = 0; j < S::n_v; ++j) g[j * m] = row[j];
+        add_frame_jacobian<S, CI::link_a>(motions, ls.pose, w.wa, w.va, a.r, g, m);
+        add_frame_jacobian<S, CI::link_b>(motions, ls.pose, w.wb, w.vb, b.r, g, m);
       }
     }
   });
