@@ -82,7 +82,7 @@ row window_row_case() {
   for (int i = 0; i <= N; ++i) err = std::max(err, std::abs(accel("post_pivot" + std::to_string(i)) - acc));
   for (int i = 0; i < N; ++i) err = std::max(err, std::abs(accel("top_pin" + std::to_string(i)) + acc));
   // The solve's round-off: a few ε times its condition (2.6e-15 of |θ̈| at
-  // 2 windows, 5.6e-15 at 40).
+  // 2 windows, 7.3e-15 at 40).
   const double limit = 1e-12 * std::abs(acc);
   if (!(err <= limit)) fail(N, "the derivative differs from the closed form θ̈ by", err, limit);
 

@@ -210,6 +210,42 @@ template <int N, class T, class MM, class F = dense_factor>
     a[i] = x;
   }
 }
+/// The rows a = L⁻¹·r can be nonzero in when r can be in those of mask:
+/// mask and every row L joins to one of them (in order: L's row i has
+/// columns k < i only).
+template <class F, std::size_t N>
+constexpr std::array<bool, N> forward_reach(std::array<bool, N> mask) {
+  constexpr auto& l = F::lists;
+  for (std::size_t i = 0; i < N; ++i)
+    for (int e = l.row_start[i]; e < l.row_start[i + 1] && !mask[i]; ++e) mask[i] = mask[l.row_cols[e]];
+  return mask;
+}
+/// The indices where mask is true, in order.
+template <auto Mask>
+constexpr auto indices_of() {
+  constexpr int n = [] {
+    int c = 0;
+    for (bool b : Mask) c += b;
+    return c;
+  }();
+  std::array<int, n> r{};
+  int c = 0;
+  for (int i = 0; i < int(Mask.size()); ++i)
+    if (Mask[i]) r[c++] = i;
+  return r;
+}
+/// a = L⁻¹·r of a sparse factor F where r is zero outside the rows Rows
+/// (forward_reach's, in order): a is computed on Rows, with the sparse
+/// ldlt_forward's arithmetic, and must be zero elsewhere.
+template <class F, auto Rows, class T, class MM, class R>
+[[gnu::always_inline]] inline void ldlt_forward_on(const MM& M, R&& r, T* a) {
+  constexpr auto& l = F::lists;
+  for (int i : Rows) {
+    T x = r(i);
+    for (int e = l.row_start[i]; e < l.row_start[i + 1]; ++e) x -= M(i, l.row_cols[e]) * a[l.row_cols[e]];
+    a[i] = x;
+  }
+}
 template <int N, class T, class MM, class F = dense_factor>
 [[gnu::always_inline]] inline void ldlt_backward(const MM& M, const T* r, T* a, F = {}) {
   if constexpr (F::sparse) {

@@ -24,6 +24,7 @@
 #include "flange/dynamics/ldlt.hpp"
 #include "flange/dynamics/loops.hpp"
 #include "flange/dynamics/mass_matrix.hpp"
+#include "flange/dynamics/sparse_qr.hpp"
 #include "flange/math/dual.hpp"
 
 namespace flange::detail {
@@ -145,8 +146,9 @@ inline constexpr double constraint_redundancy = 100;
 inline constexpr double constraint_redundancy_floor = 1e-10;
 
 /// The rates from which constrained_accelerations tracks which rows of B's
-/// columns can be nonzero (where M's factor is sparse): below, visiting
-/// every row costs less than finding the ones to visit.
+/// columns can be nonzero and finds R by Givens rotations (where M's factor
+/// is sparse), and the projection finds G's nonzeros: below, the dense
+/// loops cost less than finding the ones to visit.
 inline constexpr int sparse_columns_from = 16;
 
 /// Which of a column's N rows can be nonzero, a bit each.
@@ -166,6 +168,156 @@ template <std::size_t W, class F>
 FLANGE_INLINE void for_rows(const std::array<std::uint64_t, W>& r, F&& f) {
   for (std::size_t w = 0; w < W; ++w)
     for (std::uint64_t bits = r[w]; bits; bits &= bits - 1) f(int(w * 64) + std::countr_zero(bits));
+}
+
+/// The rates a row of cut K's constraints can be nonzero on (g: the joints
+/// from its two frames to the World), and those its column of B = L⁻¹·Gᵀ
+/// can be nonzero on (b: and the rates L joins to them, mass_factor<S>),
+/// known at compile time.
+template <class S, int K>
+struct cut_rates {
+  template <int Link>
+  static constexpr void mark(std::array<bool, S::n_v>& r) {
+    constexpr auto path = path_from_root<S, Link>();
+    [&]<std::size_t... I>(std::index_sequence<I...>) {
+      (
+          [&] {
+            using LI = link_info<S, path[I]>;
+            for (int j = 0; j < LI::nv; ++j) r[LI::v + j] = true;
+          }(),
+          ...);
+    }(std::make_index_sequence<path.size()>{});
+  }
+  static constexpr std::array<bool, S::n_v> g_mask = [] {
+    std::array<bool, S::n_v> r{};
+    mark<cut_info<S, K>::link_a>(r);
+    mark<cut_info<S, K>::link_b>(r);
+    return r;
+  }();
+  static constexpr std::array<bool, S::n_v> b_mask = [] {
+    if constexpr (mass_factor<S>::sparse) return forward_reach<mass_factor<S>>(g_mask);
+    else return std::array<bool, S::n_v>{};  // not used: the dense solve visits every row
+  }();
+  static constexpr auto g = indices_of<g_mask>();
+  static constexpr auto b = indices_of<b_mask>();
+  static constexpr rows_mask<S::n_v> b_bits = [] {
+    rows_mask<S::n_v> r{};
+    for (int i : b) r[i / 64] |= std::uint64_t(1) << (i % 64);
+    return r;
+  }();
+};
+
+/// constrained_accelerations (below) where M's factor and B's columns are
+/// sparse: the same least change, with R from Givens rotations of B's rows
+/// in the constraints' order (sparse_qr.hpp) instead of Gram–Schmidt with
+/// pivoting, so that neither Q nor R fills in: Q·w = B·R⁻¹·w and
+/// Qᵀ·Wᵀ·y = R⁻ᵀ·(G·y), each a sparse product and a triangular solve over
+/// R's envelope. A row whose remainder is a repeat (constraint_redundancy)
+/// is left out and R built again without it.
+template <int n, int m, class MM, class F, class T>
+void sparse_constrained_accelerations(const MM& Mf, F factor, const std::array<T, n>& wt, const std::array<T, n>& t,
+                                      const std::array<std::array<T, n>, m>& B,
+                                      const std::array<rows_mask<n>, m>& support, const std::array<T, m>& gamma,
+                                      const std::array<T, m>& norm2, const std::array<T, m>& own, T largest,
+                                      T repeats, T* vdot, T* lambda) {
+  using std::sqrt;
+  // B's rows: for each rate, the constraints whose columns can be nonzero in it.
+  std::array<rows_mask<m>, n> touches{};
+  for (int c = 0; c < m; ++c)
+    for_rows(support[c], [&](int i) FLANGE_INLINE_LAMBDA { touches[i][c / 64] |= std::uint64_t(1) << (c % 64); });
+  std::array<T, n> sw;  // B's rows are weighted by √D⁻¹
+  for (int i = 0; i < n; ++i) sw[i] = sqrt(wt[i]);
+  std::array<bool, m> kept;
+  kept.fill(true);
+  givens_r<m, T> R;
+  for (;;) {
+    R.clear();
+    for (int i = 0; i < n; ++i) {
+      int first = m, last = -1;
+      for_rows(touches[i], [&](int c) FLANGE_INLINE_LAMBDA {
+        if (!kept[c]) return;
+        if (c < first) first = c;
+        last = c;
+      });
+      if (last < 0) continue;
+      std::array<T, m> x;
+      for (int c = first; c <= last; ++c) x[c] = T(0);
+      for_rows(touches[i], [&](int c) FLANGE_INLINE_LAMBDA {
+        if (kept[c]) x[c] = sw[i] * B[c][i];
+      });
+      R.add_row(x.data(), first, last);
+    }
+    // The first row whose remainder repeats the rows before it goes, and R
+    // is built again without it (a row with no remainder at all has no row
+    // of R and changes nothing).
+    int repeated = -1;
+    for (int j = 0; j < m && repeated < 0; ++j) {
+      if (!kept[j]) continue;
+      if (!R.has(j)) {
+        kept[j] = false;
+        continue;
+      }
+      const T r2 = R(j, j) * R(j, j);
+      if (!(r2 > repeats * norm2[j] && r2 > T(1e-30) * largest)) repeated = j;
+    }
+    if (repeated < 0) break;
+    kept[repeated] = false;
+  }
+  // u from Rᵀ·u = γ, damped as in constrained_accelerations.
+  std::array<T, m> u{}, inv;
+  T e_max(0);
+  for (int j = 0; j < m; ++j) {
+    if (!R.has(j)) continue;
+    const T rjj = R(j, j), mu2 = T(constraint_damping * constraint_damping) * own[j];
+    const T den = T(1) / (rjj * rjj + mu2);
+    inv[j] = rjj * den;
+    const T e = mu2 * den;
+    if (e > e_max) e_max = e;
+  }
+  if (e_max <= T(constraint_sweep_skip)) {
+    R.solve_transposed(gamma.data(), u.data());
+  } else {
+    std::array<T, m> res, du;
+    for (int sweep = 0; sweep < constraint_sweeps; ++sweep) {
+      for (int j = 0; j < m; ++j) {  // res = γ − Rᵀ·u
+        if (!R.has(j)) continue;
+        T x = gamma[j];
+        for (int i = R.lo[j]; i <= j; ++i) x -= R.above(i, j) * u[i];
+        res[j] = x;
+      }
+      for (int j = 0; j < m; ++j) {  // Rᵀ·du = res, each division damped
+        if (!R.has(j)) {
+          du[j] = T(0);
+          continue;
+        }
+        T x = res[j];
+        for (int i = R.lo[j]; i < j; ++i) x -= R.above(i, j) * du[i];
+        du[j] = x * inv[j];
+      }
+      for (int j = 0; j < m; ++j) u[j] += du[j];
+    }
+  }
+  // w = u − R⁻ᵀ·(G·y), with G·y = Bᵀ·Wᵀ·y = (L⁻¹·Gᵀ)ᵀ·t.
+  std::array<T, m> gy, qy, w, x;
+  for (int c = 0; c < m; ++c) {
+    T d(0);
+    for_rows(support[c], [&](int i) FLANGE_INLINE_LAMBDA { d += B[c][i] * t[i]; });
+    gy[c] = d;
+  }
+  R.solve_transposed(gy.data(), qy.data());
+  for (int j = 0; j < m; ++j) w[j] = u[j] - qy[j];
+  // x = R⁻¹·w: the constraint forces, and Q·w = B·x.
+  R.solve(w.data(), x.data());
+  if (lambda)
+    for (int c = 0; c < m; ++c) lambda[c] = x[c];
+  std::array<T, n> dz;
+  for (int i = 0; i < n; ++i) dz[i] = T(0);
+  for (int c = 0; c < m; ++c) {
+    if (!R.has(c)) continue;
+    for_rows(support[c], [&](int i) FLANGE_INLINE_LAMBDA { dz[i] += x[c] * B[c][i]; });
+  }
+  for (int i = 0; i < n; ++i) dz[i] = t[i] + wt[i] * dz[i];
+  ldlt_backward<n>(Mf, dz.data(), vdot, factor);
 }
 
 /// v̇ for the constrained equations of motion, given the factors of M
@@ -205,11 +357,9 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   std::array<T, m> gamma, norm2;
   std::array<int, m> p;
   // Where M's factor is sparse (a tree with branches that share no joints)
-  // B's columns are too: each keeps the rows that can be nonzero, and the
-  // products, updates and norms below visit only those. What they leave out
-  // are exact zeros (a dual number's with its derivatives), so the results
-  // are the dense loops' to the last bit. From 16 rates on: below, the dense
-  // loops are faster.
+  // B's columns are too: each keeps the rows that can be nonzero (exact
+  // zeros left out: a dual number's with its derivatives), and from 16
+  // rates on the solve is sparse_constrained_accelerations'.
   constexpr bool sparse = mass_factor<S>::sparse && n >= sparse_columns_from;
   std::array<rows_mask<n>, m> support;
   auto norm_of = [&](int c) FLANGE_INLINE_LAMBDA {
@@ -219,14 +369,38 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
       for (int i = 0; i < n; ++i) s += wt[i] * B[c][i] * B[c][i];
     return s;
   };
-  for (int c = 0; c < m; ++c) {
-    std::array<T, n> g;
-    for (int i = 0; i < n; ++i) g[i] = k.G(c, i);
-    ldlt_forward<n>(Mf, g.data(), B[c].data(), mass_factor<S>{});
-    gamma[c] = -k.bias[c];
-    p[c] = c;
-    if constexpr (sparse) support[c] = nonzero_rows<n>(B[c].data());
-    norm2[c] = norm_of(c);
+  // Each row of G's squared norm, the damping's yardstick (found with B's
+  // columns where sparse, below otherwise).
+  std::array<T, m> g2;
+  if constexpr (sparse) {
+    // A cut's rows touch the joints from its two frames to the World, and
+    // after L⁻¹ the rows L joins to those (cut_rates): only those are
+    // visited.
+    for_cuts<S>([&](auto kk) FLANGE_INLINE_LAMBDA {
+      constexpr int K = decltype(kk)::value;
+      using C = cut_rates<S, K>;
+      for (int c = cut_row<S, K>(); c < cut_row<S, K>() + cut_info<S, K>::rows; ++c) {
+        B[c].fill(T(0));
+        ldlt_forward_on<mass_factor<S>, C::b>(Mf, [&](int i) FLANGE_INLINE_LAMBDA { return k.G(c, i); }, B[c].data());
+        support[c] = C::b_bits;
+        g2[c] = T(0);
+        for (int i : C::g) g2[c] += k.G(c, i) * k.G(c, i);
+      }
+    });
+    for (int c = 0; c < m; ++c) {
+      gamma[c] = -k.bias[c];
+      p[c] = c;
+      norm2[c] = norm_of(c);
+    }
+  } else {
+    for (int c = 0; c < m; ++c) {
+      std::array<T, n> g;
+      for (int i = 0; i < n; ++i) g[i] = k.G(c, i);
+      ldlt_forward<n>(Mf, g.data(), B[c].data(), mass_factor<S>{});
+      gamma[c] = -k.bias[c];
+      p[c] = c;
+      norm2[c] = norm_of(c);
+    }
   }
   T largest(0);
   // Each column's damping yardstick: its own squared norm in B, raised by
@@ -244,11 +418,12 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
       if (d > drift) drift = d;
       else if (-d > drift) drift = -d;
     }
-    std::array<T, m> g2;
     T g2max(0);
     for (int c = 0; c < m; ++c) {
-      g2[c] = T(0);
-      for (int i = 0; i < n; ++i) g2[c] += k.G(c, i) * k.G(c, i);
+      if constexpr (!sparse) {
+        g2[c] = T(0);
+        for (int i = 0; i < n; ++i) g2[c] += k.G(c, i) * k.G(c, i);
+      }
       g2[c] *= T(units[c] * units[c]);
       if (g2[c] > g2max) g2max = g2[c];
     }
@@ -258,15 +433,19 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   }
   for (int c = 0; c < m; ++c)
     if (norm2[c] > largest) largest = norm2[c];
+  T repeats = T(constraint_redundancy) * drift;  // a remainder at most this fraction of its row's norm: repeated
+  if (repeats < T(constraint_redundancy_floor)) repeats = T(constraint_redundancy_floor);
+  repeats = repeats * repeats;
+  if constexpr (sparse) {
+    sparse_constrained_accelerations<n, m>(Mf, mass_factor<S>{}, wt, t, B, support, gamma, norm2, own, largest, repeats,
+                                           vdot, lambda);
+  } else {
   // Q's columns overwrite B's, in pivot order: a pivot swaps its row of B
   // (and everything kept per row) into place, p[j] remembering the row's
   // original index, and R's columns with it.
   std::array<std::array<T, m>, m> R;
   std::array<T, m> inv_r;
   std::array<T, m> norm2_0 = norm2;
-  T repeats = T(constraint_redundancy) * drift;  // a remainder at most this fraction of its row's norm: repeated
-  if (repeats < T(constraint_redundancy_floor)) repeats = T(constraint_redundancy_floor);
-  repeats = repeats * repeats;
   int rank = 0;
   for (int j = 0; j < m; ++j) {
     int best = -1;
@@ -278,7 +457,6 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
       std::swap(norm2[j], norm2[best]);
       std::swap(norm2_0[j], norm2_0[best]);
       std::swap(own[j], own[best]);
-      if constexpr (sparse) std::swap(support[j], support[best]);
       std::swap(gamma[j], gamma[best]);
       std::swap(p[j], p[best]);
       for (int i = 0; i < j; ++i) std::swap(R[i][j], R[i][best]);
@@ -293,27 +471,12 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
       B[j][i] *= inv_r[j];
       bw[i] = wt[i] * B[j][i];
     }
-    if constexpr (sparse) {
-      std::array<int, n> rows;
-      int count = 0;
-      for_rows(support[j], [&](int i) FLANGE_INLINE_LAMBDA { rows[count++] = i; });
-      for (int c = j + 1; c < m; ++c) {
-        T d(0);
-        for (int e = 0; e < count; ++e) d += bw[rows[e]] * B[c][rows[e]];
-        R[j][c] = d;
-        if (exactly_zero(d)) continue;  // the update would subtract zeros
-        for (int e = 0; e < count; ++e) B[c][rows[e]] -= d * B[j][rows[e]];
-        for (int w = 0; w < int(support[c].size()); ++w) support[c][w] |= support[j][w];
-        norm2[c] = norm_of(c);
-      }
-    } else {
-      for (int c = j + 1; c < m; ++c) {
-        T d(0);
-        for (int i = 0; i < n; ++i) d += bw[i] * B[c][i];
-        R[j][c] = d;
-        for (int i = 0; i < n; ++i) B[c][i] -= d * B[j][i];
-        norm2[c] = norm_of(c);
-      }
+    for (int c = j + 1; c < m; ++c) {
+      T d(0);
+      for (int i = 0; i < n; ++i) d += bw[i] * B[c][i];
+      R[j][c] = d;
+      for (int i = 0; i < n; ++i) B[c][i] -= d * B[j][i];
+      norm2[c] = norm_of(c);
     }
     rank = j + 1;
   }
@@ -376,29 +539,87 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   }
   for (int i = 0; i < n; ++i) dz[i] = t[i] + wt[i] * dz[i];
   ldlt_backward<n>(Mf, dz.data(), vdot, mass_factor<S>{});
+  }
 }
 
-/// G·Gᵀ. From sparse_columns_from rates on, each entry is summed over the
-/// joints in order where both rows are not exactly zero: a row of G touches
-/// only the joints from its cut's two frames to the root, so constraints
-/// that share no joints cost nothing.
+/// The least change Δv = Gᵀ·(G·Gᵀ)⁺·b, rows of G whose part independent of
+/// the rows before them is at or below constraint_pivot_tolerance (squared,
+/// against G·Gᵀ's largest diagonal entry) left out: when b is in G's range,
+/// G·Δv = b.
+///
+/// Small (below sparse_columns_from columns): LDLᵀ of G·Gᵀ with diagonal
+/// pivoting (Eigen's unrolled product is faster than finding nonzeros).
+/// From there on: R of Gᵀ's QR by Givens rotations (sparse_qr.hpp), rows of
+/// G in their order, and Δv = Gᵀ·R⁻¹·R⁻ᵀ·b, every product over the entries
+/// can_touch says can be nonzero (for each rate, a bit per row of G): constraints that share no joints cost nothing, and a row of
+/// loops that share their neighbours' links costs in proportion to its
+/// length.
 template <int M, int N>
-Eigen::Matrix<double, M, M> gram(const Eigen::Matrix<double, M, N>& G) {
+Eigen::Matrix<double, N, 1> least_norm_change(const Eigen::Matrix<double, M, N>& G, const std::array<bool, N>& free,
+                                              const std::array<double, M>& b,
+                                              const std::array<rows_mask<M>, N>& can_touch) {
+  std::array<double, M> mu;
   if constexpr (N < sparse_columns_from) {
-    return G * G.transpose();  // small: Eigen's unrolled product is faster than finding the nonzeros
+    Eigen::Matrix<double, M, N> Gf = G;
+    for (int j = 0; j < N; ++j)
+      if (!free[j]) Gf.col(j).setZero();
+    Eigen::Matrix<double, M, M> A = Gf * Gf.transpose();
+    solve_semidefinite<M>(A, b.data(), mu.data());
+    return Gf.transpose() * Eigen::Map<const Eigen::Matrix<double, M, 1>>(mu.data());
   } else {
-    Eigen::Matrix<double, M, M> A = Eigen::Matrix<double, M, M>::Zero();
-    std::array<int, M> rows;
-    for (int j = 0; j < N; ++j) {
-      int count = 0;
-      for (int c = 0; c < M; ++c)
-        if (G(c, j) != 0) rows[count++] = c;
-      for (int a = 0; a < count; ++a)
-        for (int b = 0; b <= a; ++b) A(rows[a], rows[b]) += G(rows[a], j) * G(rows[b], j);
+    // Gᵀ's rows: for each free rate, the rows of G that can be nonzero in it.
+    std::array<rows_mask<M>, N> touches{};
+    double amax = 0;
+    {
+      std::array<double, M> g2{};
+      for (int j = 0; j < N; ++j) {
+        if (!free[j]) continue;
+        touches[j] = can_touch[j];
+        for_rows(touches[j], [&](int c) FLANGE_INLINE_LAMBDA { g2[c] += G(c, j) * G(c, j); });
+      }
+      for (double e : g2) amax = std::max(amax, e);
     }
-    for (int c = 0; c < M; ++c)
-      for (int d = 0; d < c; ++d) A(d, c) = A(c, d);
-    return A;
+    std::array<bool, M> kept;
+    kept.fill(true);
+    givens_r<M, double> R;
+    for (;;) {
+      R.clear();
+      for (int j = 0; j < N; ++j) {
+        int first = M, last = -1;
+        for_rows(touches[j], [&](int c) FLANGE_INLINE_LAMBDA {
+          if (!kept[c]) return;
+          if (c < first) first = c;
+          last = c;
+        });
+        if (last < 0) continue;
+        std::array<double, M> x;
+        for (int c = first; c <= last; ++c) x[c] = 0;
+        for_rows(touches[j], [&](int c) FLANGE_INLINE_LAMBDA {
+          if (kept[c]) x[c] = G(c, j);
+        });
+        R.add_row(x.data(), first, last);
+      }
+      // The first row that depends on the rows before it goes, and R is
+      // built again without it.
+      int dependent = -1;
+      for (int c = 0; c < M && dependent < 0; ++c) {
+        if (!kept[c]) continue;
+        if (!R.has(c)) kept[c] = false;
+        else if (!(R(c, c) * R(c, c) > constraint_pivot_tolerance * amax)) dependent = c;
+      }
+      if (dependent < 0) break;
+      kept[dependent] = false;
+    }
+    std::array<double, M> u;
+    R.solve_transposed(b.data(), u.data());
+    R.solve(u.data(), mu.data());
+    Eigen::Matrix<double, N, 1> dv;
+    for (int j = 0; j < N; ++j) {
+      double s = 0;
+      for_rows(touches[j], [&](int c) FLANGE_INLINE_LAMBDA { s += G(c, j) * mu[c]; });
+      dv[j] = s;
+    }
+    return dv;
   }
 }
 
@@ -428,6 +649,17 @@ constexpr int cut_of_row(int i) {
 template <class S, int... K>
 struct held_cuts {
   static constexpr int rows = (0 + ... + cut_info<S, K>::joint_type::nv);
+  /// Row i's rates that can be nonzero: its cut's (cut_rates).
+  static constexpr std::array<std::array<bool, S::n_v>, rows> row_rates = [] {
+    std::array<std::array<bool, S::n_v>, rows> r{};
+    [[maybe_unused]] int i = 0;
+    ((
+         [&] {
+           for (int k = 0; k < cut_info<S, K>::joint_type::nv; ++k) r[i++] = cut_rates<S, K>::g_mask;
+         }()),
+     ...);
+    return r;
+  }();
   std::array<double, rows> q{}, v{};
 
   /// Row i: its coordinate's distance from the target, and its G row.
@@ -456,6 +688,27 @@ struct held_cuts {
         ...);
   }
 };
+
+/// For each rate, the rows of the projection's G (the loops', then held's)
+/// that can be nonzero on it.
+template <class S, class Held>
+constexpr auto projection_touches() {
+  constexpr int n = S::n_v, mc = n_constraints<S>(), m = mc + Held::rows;
+  std::array<rows_mask<m>, n> t{};
+  auto add = [&](int c, const std::array<bool, n>& g) {
+    for (int j = 0; j < n; ++j)
+      if (g[j]) t[j][c / 64] |= std::uint64_t(1) << (c % 64);
+  };
+  [&]<int... K>(std::integer_sequence<int, K...>) {
+    (
+        [&] {
+          for (int r = 0; r < cut_info<S, K>::rows; ++r) add(cut_row<S, K>() + r, cut_rates<S, K>::g_mask);
+        }(),
+        ...);
+  }(std::make_integer_sequence<int, S::tree.n_cuts>{});
+  for (int i = 0; i < Held::rows; ++i) add(mc + i, Held::row_rates[i]);
+  return t;
+}
 
 /// Moves (q, v) onto the loops' constraints, changing only the rates i with
 /// free[i] (and their joints' coordinates) and holding the cut joints in
@@ -491,19 +744,10 @@ closure project_onto_loops(const S& scene, double* q, double* v, const std::arra
       }
       return t;
     };
-    auto masked = [&](const terms& k) {
-      Eigen::Matrix<double, m, n> G = k.G;
-      for (int j = 0; j < n; ++j)
-        if (!free[j]) G.col(j).setZero();
-      return G;
-    };
     // Δv = G_fᵀ·(G_f·G_fᵀ)⁺·rhs
     auto least_change = [&](const Eigen::Matrix<double, m, n>& G, const std::array<double, m>& rhs) {
-      Eigen::Matrix<double, m, m> A = gram(G);
-      std::array<double, m> mu;
-      solve_semidefinite<m>(A, rhs.data(), mu.data());
-      Eigen::Matrix<double, n, 1> dv = G.transpose() * Eigen::Map<const Eigen::Matrix<double, m, 1>>(mu.data());
-      return dv;
+      static constexpr auto can_touch = projection_touches<S, Held>();
+      return least_norm_change<m, n>(G, free, rhs, can_touch);
     };
     auto worst = [&](const std::array<double, m>& x, int* row = nullptr) {
       double w = 0;
@@ -519,14 +763,19 @@ closure project_onto_loops(const S& scene, double* q, double* v, const std::arra
       for (double e : x) s += e * e;
       return s;
     };
-    auto k = terms_at(q);
-    r.phi = worst(k.phi, &r.worst_row);
+    // Two sets of terms, the accepted one and the trial, swapped by index
+    // (no copy of G).
+    std::array<terms, 2> buffers;
+    int accepted = 0;
+    buffers[0] = terms_at(q);
+    r.phi = worst(buffers[0].phi, &r.worst_row);
     // Newton with backtracking: a step that does not shrink |Φ| is halved
     // (far from the solution a full step can overshoot), up to 30 times.
     while (r.phi > tol && r.iterations < max_iterations) {
+      const terms& k = buffers[accepted];
       std::array<double, m> rhs;
       for (int i = 0; i < m; ++i) rhs[i] = -k.phi[i];
-      const auto dv = least_change(masked(k), rhs);
+      const auto dv = least_change(k.G, rhs);
       std::array<double, S::n_q> q0;
       std::copy(q, q + S::n_q, q0.begin());
       bool shrank = false;
@@ -542,11 +791,12 @@ closure project_onto_loops(const S& scene, double* q, double* v, const std::arra
           for (int i = 0; i < LI::nq; ++i) q[LI::q + i] += dq[LI::q + i];
           normalize_joint(j, q + LI::q);
         });
-        const auto kk = terms_at(q);
+        terms& kk = buffers[1 - accepted];
+        kk = terms_at(q);
         if (norm2(kk.phi) < norm2(k.phi)) {  // the merit is |Φ|₂: Newton's step is a descent direction for it
           shrank = true;
-          k = kk;
-          r.phi = worst(k.phi, &r.worst_row);
+          accepted = 1 - accepted;
+          r.phi = worst(kk.phi, &r.worst_row);
         }
       }
       ++r.iterations;
@@ -555,18 +805,18 @@ closure project_onto_loops(const S& scene, double* q, double* v, const std::arra
         break;
       }
     }
-    // G·v = 0 on the loops' rows, held's rates as asked on its.
+    // G·v = 0 on the loops' rows, held's rates as asked on its. (Each
+    // gv[i] sums over j in order; G is stored by columns.)
+    const terms& k = buffers[accepted];
     std::array<double, m> gv;
-    for (int i = 0; i < m; ++i) {
-      gv[i] = i < n_constraints<S>() ? 0.0 : held.v[std::max(0, i - n_constraints<S>())];
-      for (int j = 0; j < n; ++j) gv[i] -= k.G(i, j) * v[j];
-    }
-    const auto dv = least_change(masked(k), gv);
+    for (int i = 0; i < m; ++i) gv[i] = i < n_constraints<S>() ? 0.0 : held.v[std::max(0, i - n_constraints<S>())];
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < m; ++i) gv[i] -= k.G(i, j) * v[j];
+    const auto dv = least_change(k.G, gv);
     for (int j = 0; j < n; ++j) v[j] += dv[j];
-    for (int i = 0; i < m; ++i) {
-      gv[i] = i < n_constraints<S>() ? 0.0 : -held.v[std::max(0, i - n_constraints<S>())];
-      for (int j = 0; j < n; ++j) gv[i] += k.G(i, j) * v[j];
-    }
+    for (int i = 0; i < m; ++i) gv[i] = i < n_constraints<S>() ? 0.0 : -held.v[std::max(0, i - n_constraints<S>())];
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < m; ++i) gv[i] += k.G(i, j) * v[j];
     r.phid = worst(gv);
   }
   return r;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
 #include "flange/components/body.hpp"
@@ -149,7 +150,15 @@ struct window_row_params {
   double width = 0.5, height = 1.0;     ///< the windows' pitch w along x and the posts' length h [m]
   double m_post = 1.0, m_top = 0.5;     ///< [kg]
   Vec3d g = Vec3d(0, -9.81, 0);
+  Vec3d axis = Vec3d(0, 0, 1);          ///< every joint's axis, with window_row's Axis = axis::any (⟂ x)
 };
+
+/// A revolute of window_row: the typed Axis, or about p.axis at run time.
+template <fixed_string Name, class Axis, class Params>
+auto window_joint(const Params& p) {
+  if constexpr (std::is_same_v<Axis, axis::any>) return Revolute<Name, Axis>({.n = p.axis});
+  else return Revolute<Name, Axis>{};
+}
 
 /// A row of N parallelogram windows, planar about z: N + 1 posts of length
 /// h pivot on the ground at x = i·w ("post_pivot<i>", q = the post's angle
@@ -160,18 +169,21 @@ struct window_row_params {
 /// top bars stay level. With the posts flat (q = 0 or π) the top bars line
 /// up with them: a singular position of every loop at once. The loops share
 /// posts, so neighbouring windows' constraints are coupled and the others
-/// are not: the constraint solve's structure is banded.
-template <int N, class Params = window_row_params>
+/// are not: the constraint solve's structure is banded. With Axis =
+/// axis::any every joint turns about p.axis given at run time (at right
+/// angles to x; its plane then holds the row): each cut gives a spatial
+/// joint's five rows, three of them redundant.
+template <int N, class Params = window_row_params, class Axis = axis::z>
 auto window_row(const Params& p) {
   static_assert(N >= 1, "window_row<N>: at least one window");
   return [&]<int... I, int... K>(std::integer_sequence<int, I...>, std::integer_sequence<int, K...>) {
     return scene(World<"world">({.g = p.g}),
                  FixedTranslation<indexed_name<"ground", I>()>({.d = Vec3d(I * p.width, 0, 0)})...,
-                 Revolute<indexed_name<"post_pivot", I>(), axis::z>{}...,
+                 window_joint<indexed_name<"post_pivot", I>(), Axis>(p)...,
                  bar<indexed_name<"post", I>()>(p.height, p.m_post)...,
-                 Revolute<indexed_name<"top_pin", K>(), axis::z>{}...,
+                 window_joint<indexed_name<"top_pin", K>(), Axis>(p)...,
                  bar<indexed_name<"top", K>()>(p.width, p.m_top)...,
-                 Revolute<indexed_name<"top_end", K>(), axis::z>{}...,
+                 window_joint<indexed_name<"top_end", K>(), Axis>(p)...,
                  connect<"world.frame_b", indexed_name<"ground", I>() + ".frame_a">...,
                  connect<indexed_name<"ground", I>() + ".frame_b", indexed_name<"post_pivot", I>() + ".frame_a">...,
                  connect<indexed_name<"post_pivot", I>() + ".frame_b", indexed_name<"post", I>() + ".frame_a">...,
