@@ -151,9 +151,6 @@ inline constexpr double constraint_redundancy_floor = 1e-10;
 /// loops cost less than finding the ones to visit.
 inline constexpr int sparse_columns_from = 16;
 
-/// Which of a column's N rows can be nonzero, a bit each.
-template <int N>
-using rows_mask = std::array<std::uint64_t, (N + 63) / 64>;
 /// The rows of x[0 … N) that are not exactly zero (exactly_zero: a dual
 /// number's derivatives too).
 template <int N, class T>
@@ -162,12 +159,6 @@ rows_mask<N> nonzero_rows(const T* x) {
   for (int i = 0; i < N; ++i)
     if (!exactly_zero(x[i])) r[i / 64] |= std::uint64_t(1) << (i % 64);
   return r;
-}
-/// f(i) for each row i in r, in increasing order.
-template <std::size_t W, class F>
-FLANGE_INLINE void for_rows(const std::array<std::uint64_t, W>& r, F&& f) {
-  for (std::size_t w = 0; w < W; ++w)
-    for (std::uint64_t bits = r[w]; bits; bits &= bits - 1) f(int(w * 64) + std::countr_zero(bits));
 }
 
 /// The rates a row of cut K's constraints can be nonzero on (g: the joints
@@ -227,42 +218,14 @@ void sparse_constrained_accelerations(const MM& Mf, F factor, const std::array<T
     for_rows(support[c], [&](int i) FLANGE_INLINE_LAMBDA { touches[i][c / 64] |= std::uint64_t(1) << (c % 64); });
   std::array<T, n> sw;  // B's rows are weighted by √D⁻¹
   for (int i = 0; i < n; ++i) sw[i] = sqrt(wt[i]);
-  std::array<bool, m> kept;
-  kept.fill(true);
+  // A row whose remainder repeats the rows before it is left out.
   givens_r<m, T> R;
-  for (;;) {
-    R.clear();
-    for (int i = 0; i < n; ++i) {
-      int first = m, last = -1;
-      for_rows(touches[i], [&](int c) FLANGE_INLINE_LAMBDA {
-        if (!kept[c]) return;
-        if (c < first) first = c;
-        last = c;
+  R.factor_rows(
+      touches, [&](int c, int i) FLANGE_INLINE_LAMBDA { return sw[i] * B[c][i]; },
+      [&](int j, const T& rjj) FLANGE_INLINE_LAMBDA {
+        const T r2 = rjj * rjj;
+        return !(r2 > repeats * norm2[j] && r2 > T(1e-30) * largest);
       });
-      if (last < 0) continue;
-      std::array<T, m> x;
-      for (int c = first; c <= last; ++c) x[c] = T(0);
-      for_rows(touches[i], [&](int c) FLANGE_INLINE_LAMBDA {
-        if (kept[c]) x[c] = sw[i] * B[c][i];
-      });
-      R.add_row(x.data(), first, last);
-    }
-    // The first row whose remainder repeats the rows before it goes, and R
-    // is built again without it (a row with no remainder at all has no row
-    // of R and changes nothing).
-    int repeated = -1;
-    for (int j = 0; j < m && repeated < 0; ++j) {
-      if (!kept[j]) continue;
-      if (!R.has(j)) {
-        kept[j] = false;
-        continue;
-      }
-      const T r2 = R(j, j) * R(j, j);
-      if (!(r2 > repeats * norm2[j] && r2 > T(1e-30) * largest)) repeated = j;
-    }
-    if (repeated < 0) break;
-    kept[repeated] = false;
-  }
   // u from Rᵀ·u = γ, damped as in constrained_accelerations.
   std::array<T, m> u{}, inv;
   T e_max(0);
@@ -579,37 +542,10 @@ Eigen::Matrix<double, N, 1> least_norm_change(const Eigen::Matrix<double, M, N>&
       }
       for (double e : g2) amax = std::max(amax, e);
     }
-    std::array<bool, M> kept;
-    kept.fill(true);
     givens_r<M, double> R;
-    for (;;) {
-      R.clear();
-      for (int j = 0; j < N; ++j) {
-        int first = M, last = -1;
-        for_rows(touches[j], [&](int c) FLANGE_INLINE_LAMBDA {
-          if (!kept[c]) return;
-          if (c < first) first = c;
-          last = c;
-        });
-        if (last < 0) continue;
-        std::array<double, M> x;
-        for (int c = first; c <= last; ++c) x[c] = 0;
-        for_rows(touches[j], [&](int c) FLANGE_INLINE_LAMBDA {
-          if (kept[c]) x[c] = G(c, j);
-        });
-        R.add_row(x.data(), first, last);
-      }
-      // The first row that depends on the rows before it goes, and R is
-      // built again without it.
-      int dependent = -1;
-      for (int c = 0; c < M && dependent < 0; ++c) {
-        if (!kept[c]) continue;
-        if (!R.has(c)) kept[c] = false;
-        else if (!(R(c, c) * R(c, c) > constraint_pivot_tolerance * amax)) dependent = c;
-      }
-      if (dependent < 0) break;
-      kept[dependent] = false;
-    }
+    R.factor_rows(
+        touches, [&](int c, int j) FLANGE_INLINE_LAMBDA { return G(c, j); },
+        [&](int, double rcc) FLANGE_INLINE_LAMBDA { return !(rcc * rcc > constraint_pivot_tolerance * amax); });
     std::array<double, M> u;
     R.solve_transposed(b.data(), u.data());
     R.solve(u.data(), mu.data());

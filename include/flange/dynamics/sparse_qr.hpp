@@ -13,12 +13,24 @@
 // Squares Problems", 1996, §6.6).
 #pragma once
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "flange/detail/inline.hpp"
 #include "flange/math/dual.hpp"
 
 namespace flange::detail {
+
+/// Which of a column's N rows can be nonzero, a bit each.
+template <int N>
+using rows_mask = std::array<std::uint64_t, (N + 63) / 64>;
+/// f(i) for each row i in r, in increasing order.
+template <std::size_t W, class F>
+FLANGE_INLINE void for_rows(const std::array<std::uint64_t, W>& r, F&& f) {
+  for (std::size_t w = 0; w < W; ++w)
+    for (std::uint64_t bits = r[w]; bits; bits &= bits - 1) f(int(w * 64) + std::countr_zero(bits));
+}
 
 /// R of an M-column QR built row by row. Row k exists where has(k), over
 /// the columns [k, hi[k]]; a column none of the rows reached (or every row
@@ -68,6 +80,43 @@ struct givens_r {
         r[k][j] = c * u + s * v;
         x[j] = c * v - s * u;
       }
+    }
+  }
+
+  /// R of the matrix whose row i (of N) can be nonzero in the columns
+  /// touches[i], entry(c, i) in column c, built again without the first
+  /// column whose diagonal repeats(c, R(c, c)) says depends on the columns
+  /// before it, until none does (a column no row reaches is left out as it
+  /// is: it has no row of R and changes nothing).
+  template <std::size_t N, class Entry, class Repeats>
+  void factor_rows(const std::array<rows_mask<M>, N>& touches, Entry&& entry, Repeats&& repeats) {
+    std::array<bool, M> kept;
+    kept.fill(true);
+    for (;;) {
+      clear();
+      for (std::size_t i = 0; i < N; ++i) {
+        int first = M, last = -1;
+        for_rows(touches[i], [&](int c) FLANGE_INLINE_LAMBDA {
+          if (!kept[c]) return;
+          if (c < first) first = c;
+          last = c;
+        });
+        if (last < 0) continue;
+        std::array<T, M> x;
+        for (int c = first; c <= last; ++c) x[c] = T(0);
+        for_rows(touches[i], [&](int c) FLANGE_INLINE_LAMBDA {
+          if (kept[c]) x[c] = entry(c, int(i));
+        });
+        add_row(x.data(), first, last);
+      }
+      int dependent = -1;
+      for (int c = 0; c < M && dependent < 0; ++c) {
+        if (!kept[c]) continue;
+        if (!has(c)) kept[c] = false;
+        else if (repeats(c, r[c][c])) dependent = c;
+      }
+      if (dependent < 0) return;
+      kept[dependent] = false;
     }
   }
 
