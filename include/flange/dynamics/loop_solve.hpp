@@ -167,22 +167,17 @@ rows_mask<N> nonzero_rows(const T* x) {
 /// known at compile time.
 template <class S, int K>
 struct cut_rates {
-  template <int Link>
-  static constexpr void mark(std::array<bool, S::n_v>& r) {
-    constexpr auto path = path_from_root<S, Link>();
-    [&]<std::size_t... I>(std::index_sequence<I...>) {
-      (
-          [&] {
-            using LI = link_info<S, path[I]>;
-            for (int j = 0; j < LI::nv; ++j) r[LI::v + j] = true;
-          }(),
-          ...);
-    }(std::make_index_sequence<path.size()>{});
+  /// Marks the rates of the joints from link to the World.
+  static constexpr void mark(int link, std::array<bool, S::n_v>& r) {
+    for (int L = link; L > 0; L = S::tree.link_parent[L]) {
+      const int j = S::tree.link_joint[L];
+      for (int k = 0; k < S::table.nv[j]; ++k) r[S::tree.v_offset[j] + k] = true;
+    }
   }
   static constexpr std::array<bool, S::n_v> g_mask = [] {
     std::array<bool, S::n_v> r{};
-    mark<cut_info<S, K>::link_a>(r);
-    mark<cut_info<S, K>::link_b>(r);
+    mark(cut_info<S, K>::link_a, r);
+    mark(cut_info<S, K>::link_b, r);
     return r;
   }();
   static constexpr std::array<bool, S::n_v> b_mask = [] {
