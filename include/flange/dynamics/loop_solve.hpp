@@ -151,16 +151,6 @@ inline constexpr double constraint_redundancy_floor = 1e-10;
 /// loops cost less than finding the ones to visit.
 inline constexpr int sparse_columns_from = 16;
 
-/// The rows of x[0 … N) that are not exactly zero (exactly_zero: a dual
-/// number's derivatives too).
-template <int N, class T>
-rows_mask<N> nonzero_rows(const T* x) {
-  rows_mask<N> r{};
-  for (int i = 0; i < N; ++i)
-    if (!exactly_zero(x[i])) r[i / 64] |= std::uint64_t(1) << (i % 64);
-  return r;
-}
-
 /// The rates a row of cut K's constraints can be nonzero on (g: the joints
 /// from its two frames to the World), and those its column of B = L⁻¹·Gᵀ
 /// can be nonzero on (b: and the rates L joins to them, mass_factor<S>),
@@ -347,7 +337,6 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
     });
     for (int c = 0; c < m; ++c) {
       gamma[c] = -k.bias[c];
-      p[c] = c;
       norm2[c] = norm_of(c);
     }
   } else {
