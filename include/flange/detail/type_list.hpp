@@ -53,28 +53,30 @@ template <std::size_t I, class T>
 struct indexed_value {
   T value;
 };
-/// Values of the types Ts (values or references), side by side; get<I>()
-/// is the I-th.
+/// Values of the types Ts (values or references), side by side;
+/// value_at<I>(v) is the I-th.
 template <class Seq, class... Ts>
-class indexed_values;
+struct indexed_values;
 template <std::size_t... I, class... Ts>
-class indexed_values<std::index_sequence<I...>, Ts...> : indexed_value<I, Ts>... {
- public:
+struct indexed_values<std::index_sequence<I...>, Ts...> : indexed_value<I, Ts>... {
   /// Each value initialised from one argument, forwarded (so references
   /// are held as references, and a value is moved or copied once).
   template <class... A>
   explicit indexed_values(std::in_place_t, A&&... a) : indexed_value<I, Ts>{std::forward<A>(a)}... {}
-  // The return type is deduced (written out, it would put the whole list
-  // into each get<K>'s mangled name): const T& for a value held by a const
-  // indexed_values, the referred object for a reference.
-  template <int K>
-  [[nodiscard]] auto& get() const {
-    return static_cast<const indexed_value<std::size_t(K), nth_t<K, Ts...>>&>(*this).value;
-  }
-  template <int K>
-  [[nodiscard]] auto& get() {
-    return static_cast<indexed_value<std::size_t(K), nth_t<K, Ts...>>&>(*this).value;
-  }
 };
+/// The value at position K of an indexed_values: const T& for a value held
+/// by a const indexed_values, the referred object for a reference. T is
+/// deduced from the one base indexed_value<K, T>, so an instantiation names
+/// that value's type alone; a member get<K> would carry the whole list in
+/// its mangled name (tens of kilobytes for a scene of a few hundred
+/// components, each mangled again by the compiler).
+template <std::size_t K, class T>
+[[nodiscard]] constexpr auto& value_at(const indexed_value<K, T>& v) {
+  return v.value;
+}
+template <std::size_t K, class T>
+[[nodiscard]] constexpr auto& value_at(indexed_value<K, T>& v) {
+  return v.value;
+}
 
 }  // namespace flange::detail

@@ -160,6 +160,32 @@ auto window_joint(const Params& p) {
   else return Revolute<Name, Axis>{};
 }
 
+/// window_row's components and connections, as a structure without
+/// dynamics (detail::scene_structure).
+template <int N, class Params, class Axis>
+auto window_row_structure(const Params& p) {
+  static_assert(N >= 1, "window_row<N>: at least one window");
+  return [&]<int... I, int... K>(std::integer_sequence<int, I...>, std::integer_sequence<int, K...>) {
+    return flange::detail::scene_structure(
+        World<"world">({.g = p.g}), FixedTranslation<indexed_name<"ground", I>()>({.d = Vec3d(I * p.width, 0, 0)})...,
+        window_joint<indexed_name<"post_pivot", I>(), Axis>(p)..., bar<indexed_name<"post", I>()>(p.height, p.m_post)...,
+        window_joint<indexed_name<"top_pin", K>(), Axis>(p)..., bar<indexed_name<"top", K>()>(p.width, p.m_top)...,
+        window_joint<indexed_name<"top_end", K>(), Axis>(p)...,
+        connect<"world.frame_b", indexed_name<"ground", I>() + ".frame_a">...,
+        connect<indexed_name<"ground", I>() + ".frame_b", indexed_name<"post_pivot", I>() + ".frame_a">...,
+        connect<indexed_name<"post_pivot", I>() + ".frame_b", indexed_name<"post", I>() + ".frame_a">...,
+        connect<indexed_name<"post", K>() + ".frame_b", indexed_name<"top_pin", K>() + ".frame_a">...,
+        connect<indexed_name<"top_pin", K>() + ".frame_b", indexed_name<"top", K>() + ".frame_a">...,
+        connect<indexed_name<"top", K>() + ".frame_b", indexed_name<"top_end", K>() + ".frame_a">...,
+        connect<indexed_name<"post", K + 1>() + ".frame_b", indexed_name<"top_end", K>() + ".frame_b">...);
+  }(std::make_integer_sequence<int, N + 1>{}, std::make_integer_sequence<int, N>{});
+}
+/// window_row's scene under a short name of its own (flange::renamed): a
+/// row of 40 windows has some 400 components, whose list would otherwise be
+/// spelt out in every function its dynamics instantiate.
+template <int N, class Params, class Axis>
+struct window_row_scene : decltype(window_row_structure<N, Params, Axis>(std::declval<const Params&>())) {};
+
 /// A row of N parallelogram windows, planar about z: N + 1 posts of length
 /// h pivot on the ground at x = i·w ("post_pivot<i>", q = the post's angle
 /// from the ground line), and N top bars of length w each join two posts,
@@ -174,24 +200,8 @@ auto window_joint(const Params& p) {
 /// angles to x; its plane then holds the row): each cut gives a spatial
 /// joint's five rows, three of them redundant.
 template <int N, class Params = window_row_params, class Axis = axis::z>
-auto window_row(const Params& p) {
-  static_assert(N >= 1, "window_row<N>: at least one window");
-  return [&]<int... I, int... K>(std::integer_sequence<int, I...>, std::integer_sequence<int, K...>) {
-    return scene(World<"world">({.g = p.g}),
-                 FixedTranslation<indexed_name<"ground", I>()>({.d = Vec3d(I * p.width, 0, 0)})...,
-                 window_joint<indexed_name<"post_pivot", I>(), Axis>(p)...,
-                 bar<indexed_name<"post", I>()>(p.height, p.m_post)...,
-                 window_joint<indexed_name<"top_pin", K>(), Axis>(p)...,
-                 bar<indexed_name<"top", K>()>(p.width, p.m_top)...,
-                 window_joint<indexed_name<"top_end", K>(), Axis>(p)...,
-                 connect<"world.frame_b", indexed_name<"ground", I>() + ".frame_a">...,
-                 connect<indexed_name<"ground", I>() + ".frame_b", indexed_name<"post_pivot", I>() + ".frame_a">...,
-                 connect<indexed_name<"post_pivot", I>() + ".frame_b", indexed_name<"post", I>() + ".frame_a">...,
-                 connect<indexed_name<"post", K>() + ".frame_b", indexed_name<"top_pin", K>() + ".frame_a">...,
-                 connect<indexed_name<"top_pin", K>() + ".frame_b", indexed_name<"top", K>() + ".frame_a">...,
-                 connect<indexed_name<"top", K>() + ".frame_b", indexed_name<"top_end", K>() + ".frame_a">...,
-                 connect<indexed_name<"post", K + 1>() + ".frame_b", indexed_name<"top_end", K>() + ".frame_b">...);
-  }(std::make_integer_sequence<int, N + 1>{}, std::make_integer_sequence<int, N>{});
+System<window_row_scene<N, Params, Axis>> window_row(const Params& p) {
+  return flange::detail::named_system<window_row_scene<N, Params, Axis>>(window_row_structure<N, Params, Axis>(p));
 }
 
 /// The piston's position x(θ) = r·cos θ + √(l² − r²·sin² θ) and its first and

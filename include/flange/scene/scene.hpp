@@ -379,7 +379,7 @@ class Scene<detail::type_list<Cs...>, detail::wiring<F...>> {
 
   template <int I>
   [[nodiscard]] const auto& component() const {
-    return components_.template get<I>();
+    return detail::value_at<std::size_t(I)>(components_);
   }
   template <fixed_string Name>
   [[nodiscard]] const auto& get() const {
@@ -402,7 +402,13 @@ namespace detail {
 template <bool Connection, class... Args>
 constexpr auto positions() {
   constexpr std::array<bool, sizeof...(Args)> pick{(is_connection<Args>::value == Connection)...};
-  std::array<int, (0 + ... + int(is_connection<Args>::value == Connection))> r{};
+  // Counted by a loop, not a fold (clang nests a fold's terms, 256 deep at most).
+  constexpr int count = [&] {
+    int c = 0;
+    for (const bool b : pick) c += b;
+    return c;
+  }();
+  std::array<int, count> r{};
   int k = 0;
   for (int i = 0; i < int(sizeof...(Args)); ++i)
     if (pick[i]) r[k++] = i;
@@ -433,7 +439,7 @@ auto make_scene(Args&&... args) {
   const indexed_values<std::index_sequence_for<Args...>, Args&&...> all(std::in_place, std::forward<Args>(args)...);
   return [&]<std::size_t... I>(std::index_sequence<I...>) {
     return Make<Scene<component_types, typename resolve_connections<component_types, connection_types>::type>>(
-        std::in_place, std::forward<nth_t<components[I], Args...>>(all.template get<components[I]>())...);
+        std::in_place, std::forward<nth_t<components[I], Args...>>(value_at<components[I]>(all))...);
   }(std::make_index_sequence<components.size()>{});
 }
 }  // namespace detail

@@ -13,6 +13,7 @@
 #include "flange/detail/inline.hpp"
 #include <array>
 #include <string_view>
+#include <type_traits>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -24,6 +25,11 @@
 
 namespace flange {
 
+namespace detail {
+struct from_scene_t {};
+inline constexpr from_scene_t from_scene{};
+}  // namespace detail
+
 template <class S>
 class System : public S {
  public:
@@ -34,6 +40,12 @@ class System : public S {
   template <class... A>
   explicit System(std::in_place_t, A&&... components)
       : S(std::in_place, std::forward<A>(components)...), model_(detail::build_model(static_cast<const S&>(*this))) {
+    if constexpr (detail::constant_mass_matrix<S>()) detail::fold_mass_matrix(*this, model_);
+  }
+
+  /// From a scene of the same components under another name (renamed
+  /// below): the scene moved in, the constants computed again.
+  System(detail::from_scene_t, S&& scene) : S(std::move(scene)), model_(detail::build_model(static_cast<const S&>(*this))) {
     if constexpr (detail::constant_mass_matrix<S>()) detail::fold_mass_matrix(*this, model_);
   }
 
@@ -88,6 +100,46 @@ class System : public S {
 template <class... Args>
 auto scene(Args&&... args) {
   return detail::make_scene<System>(std::forward<Args>(args)...);
+}
+
+namespace detail {
+/// The structure of a scene, built from components and connections as
+/// flange::scene builds it, without its dynamics: the base of a named scene
+/// (models/linkages.hpp), whose constants are then computed once, under the
+/// short name, and never under the long one.
+template <class... Args>
+auto scene_structure(Args&&... args) {
+  return make_scene<std::type_identity_t>(std::forward<Args>(args)...);
+}
+/// The scene Named (a class deriving from the structure S, adding nothing)
+/// with its dynamics.
+template <class Named, class S>
+System<Named> named_system(S&& structure) {
+  static_assert(std::is_base_of_v<S, Named> && sizeof(Named) == sizeof(S) && std::is_aggregate_v<Named>);
+  return System<Named>(from_scene, Named{std::move(structure)});
+}
+}  // namespace detail
+
+/// The scene under a short name of its own: Named is a class that derives
+/// from the scene's structure and adds nothing,
+///
+///     auto make_plant() { return scene(World<"world">{}, …); }
+///     struct plant_scene : decltype(make_plant())::scene_type {};
+///     const auto plant = renamed<plant_scene>(make_plant());
+///
+/// and every function the scene's dynamics instantiate carries
+/// "plant_scene" in its mangled name where it carried the whole list of
+/// components (tens of kilobytes for a scene of a few hundred, each mangled
+/// again by the compiler): a large scene compiles in less time and memory,
+/// and its object file shrinks (docs/performance.md, "Compile time at
+/// scale"). The scene and its numbers are the same. The dynamics' constants
+/// are computed under both names, once each.
+template <class Named, class S>
+System<Named> renamed(System<S> scene) {
+  static_assert(std::is_base_of_v<S, Named> && sizeof(Named) == sizeof(S) && std::is_aggregate_v<Named>,
+                "flange::renamed<Named>(scene): Named must be a class that derives from the scene's "
+                "decltype(scene)::scene_type and adds nothing (struct Named : decltype(scene)::scene_type {};)");
+  return detail::named_system<Named>(static_cast<S&&>(scene));
 }
 
 /// The state with every joint at its neutral configuration (angles and
