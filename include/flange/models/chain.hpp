@@ -9,6 +9,7 @@
 #pragma once
 #include <array>
 #include <random>
+#include <type_traits>
 #include <utility>
 
 #include "flange/components/body.hpp"
@@ -46,10 +47,10 @@ chain_params<N> random_chain_params(Rng& rng) {
   return p;
 }
 
-/// A chain of N links with joint axis type Axis<I>::type for link I.
-template <int N, template <int> class Axis, class Law = axis_law::none, class Gravity = gravity_kind::uniform,
-          class Inertia = inertia_kind::full>
-auto chain(const chain_params<N>& p) {
+/// chain's components and connections, as a structure without dynamics
+/// (detail::scene_structure).
+template <int N, template <int> class Axis, class Law, class Gravity, class Inertia>
+auto chain_structure(const chain_params<N>& p) {
   return [&]<int... I, int... K>(std::integer_sequence<int, I...>, std::integer_sequence<int, K...>) {
     auto joint = [&]<int L>(std::integral_constant<int, L>) {
       using A = typename Axis<L>::type;
@@ -67,7 +68,7 @@ auto chain(const chain_params<N>& p) {
       if constexpr (std::is_same_v<Gravity, gravity_kind::none>) return World<"world", Gravity>{};
       else return World<"world", Gravity>({.g = p.g});
     };
-    return scene(world(),                                                                              //
+    return flange::detail::scene_structure(world(),                                                   //
                  joint(std::integral_constant<int, I>{})...,                                            //
                  FixedTranslation<indexed_name<"r", I>()>({.d = p.d[I]})...,                            //
                  body(std::integral_constant<int, I>{})...,                                             //
@@ -76,6 +77,19 @@ auto chain(const chain_params<N>& p) {
                  connect<indexed_name<"r", I>() + ".frame_b", indexed_name<"b", I>() + ".frame_a">...,  //
                  connect<indexed_name<"r", K>() + ".frame_b", indexed_name<"j", K + 1>() + ".frame_a">...);
   }(std::make_integer_sequence<int, N>{}, std::make_integer_sequence<int, N - 1>{});
+}
+/// chain's scene under a short name of its own (flange::renamed): the
+/// functions its dynamics instantiate name chain_scene<N, …>, not its 3N + 1
+/// components.
+template <int N, template <int> class Axis, class Law, class Gravity, class Inertia>
+struct chain_scene : decltype(chain_structure<N, Axis, Law, Gravity, Inertia>(std::declval<const chain_params<N>&>())) {};
+
+/// A chain of N links with joint axis type Axis<I>::type for link I.
+template <int N, template <int> class Axis, class Law = axis_law::none, class Gravity = gravity_kind::uniform,
+          class Inertia = inertia_kind::full>
+System<chain_scene<N, Axis, Law, Gravity, Inertia>> chain(const chain_params<N>& p) {
+  return flange::detail::named_system<chain_scene<N, Axis, Law, Gravity, Inertia>>(
+      chain_structure<N, Axis, Law, Gravity, Inertia>(p));
 }
 
 template <int>
