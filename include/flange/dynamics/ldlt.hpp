@@ -188,18 +188,22 @@ template <int N, class T, class MM, class F = dense_factor>
   return {};
 }
 
+/// Row i of a = L⁻¹·r for a sparse factor F: x − Σₖ L(i,k)·a[k] over the
+/// entries L can have in that row (x = r[i]).
+template <class F, class T, class MM>
+[[gnu::always_inline]] inline T forward_row(const MM& M, int i, T x, const T* a) {
+  constexpr auto& l = F::lists;
+  for (int e = l.row_start[i]; e < l.row_start[i + 1]; ++e) x -= M(i, l.row_cols[e]) * a[l.row_cols[e]];
+  return x;
+}
+
 /// a = L⁻¹·r and a = L⁻ᵀ·r: the halves of a solve with the factors of
 /// ldlt_factor (r and a may be one array).
 template <int N, class T, class MM, class F = dense_factor>
 [[gnu::always_inline]] inline void ldlt_forward(const MM& M, const T* r, T* a, F = {}) {
   if constexpr (F::sparse) {
-    constexpr auto& l = F::lists;
 #pragma GCC unroll 16
-    for (int i = 0; i < N; ++i) {
-      T x = r[i];
-      for (int e = l.row_start[i]; e < l.row_start[i + 1]; ++e) x -= M(i, l.row_cols[e]) * a[l.row_cols[e]];
-      a[i] = x;
-    }
+    for (int i = 0; i < N; ++i) a[i] = forward_row<F>(M, i, r[i], a);
     return;
   }
 #pragma GCC unroll 16
@@ -239,12 +243,7 @@ constexpr auto indices_of() {
 /// ldlt_forward's arithmetic, and must be zero elsewhere.
 template <class F, auto Rows, class T, class MM, class R>
 [[gnu::always_inline]] inline void ldlt_forward_on(const MM& M, R&& r, T* a) {
-  constexpr auto& l = F::lists;
-  for (int i : Rows) {
-    T x = r(i);
-    for (int e = l.row_start[i]; e < l.row_start[i + 1]; ++e) x -= M(i, l.row_cols[e]) * a[l.row_cols[e]];
-    a[i] = x;
-  }
+  for (int i : Rows) a[i] = forward_row<F>(M, i, T(r(i)), a);
 }
 template <int N, class T, class MM, class F = dense_factor>
 [[gnu::always_inline]] inline void ldlt_backward(const MM& M, const T* r, T* a, F = {}) {
