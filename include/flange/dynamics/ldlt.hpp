@@ -224,20 +224,6 @@ constexpr std::array<bool, N> forward_reach(std::array<bool, N> mask) {
     for (int e = l.row_start[i]; e < l.row_start[i + 1] && !mask[i]; ++e) mask[i] = mask[l.row_cols[e]];
   return mask;
 }
-/// The indices where mask is true, in order.
-template <auto Mask>
-constexpr auto indices_of() {
-  constexpr int n = [] {
-    int c = 0;
-    for (bool b : Mask) c += b;
-    return c;
-  }();
-  std::array<int, n> r{};
-  int c = 0;
-  for (int i = 0; i < int(Mask.size()); ++i)
-    if (Mask[i]) r[c++] = i;
-  return r;
-}
 /// a = L⁻¹·r of a sparse factor F where r is zero outside the rows Rows
 /// (forward_reach's, in order): a is computed on Rows, with the sparse
 /// ldlt_forward's arithmetic, and must be zero elsewhere.

@@ -21,6 +21,7 @@
 #include <type_traits>
 
 #include "flange/detail/inline.hpp"
+#include "flange/detail/mask.hpp"
 #include "flange/dynamics/ldlt.hpp"
 #include "flange/dynamics/loops.hpp"
 #include "flange/dynamics/mass_matrix.hpp"

@@ -25,6 +25,7 @@
 
 #include "flange/core/component.hpp"
 #include "flange/core/joint.hpp"
+#include "flange/detail/mask.hpp"
 #include "flange/detail/type_list.hpp"
 #include "flange/scene/connect.hpp"
 #include "flange/scene/diagnostics.hpp"
@@ -401,18 +402,7 @@ namespace detail {
 /// components (!Connection), in order.
 template <bool Connection, class... Args>
 constexpr auto positions() {
-  constexpr std::array<bool, sizeof...(Args)> pick{(is_connection<Args>::value == Connection)...};
-  // Counted by a loop, not a fold (clang nests a fold's terms, 256 deep at most).
-  constexpr int count = [&] {
-    int c = 0;
-    for (const bool b : pick) c += b;
-    return c;
-  }();
-  std::array<int, count> r{};
-  int k = 0;
-  for (int i = 0; i < int(sizeof...(Args)); ++i)
-    if (pick[i]) r[k++] = i;
-  return r;
+  return indices_of<std::array<bool, sizeof...(Args)>{(is_connection<Args>::value == Connection)...}>();
 }
 template <auto Positions, class Seq, class... Args>
 struct pick_types;

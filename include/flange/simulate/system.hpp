@@ -115,7 +115,9 @@ auto scene_structure(Args&&... args) {
 /// with its dynamics.
 template <class Named, class S>
 System<Named> named_system(S&& structure) {
-  static_assert(std::is_base_of_v<S, Named> && sizeof(Named) == sizeof(S) && std::is_aggregate_v<Named>);
+  static_assert(std::is_base_of_v<S, Named> && sizeof(Named) == sizeof(S) && std::is_aggregate_v<Named>,
+                "flange::renamed<Named>(scene): Named must be a class that derives from the scene's "
+                "decltype(scene)::scene_type and adds nothing (struct Named : decltype(scene)::scene_type {};)");
   return System<Named>(from_scene, Named{std::move(structure)});
 }
 }  // namespace detail
@@ -136,9 +138,6 @@ System<Named> named_system(S&& structure) {
 /// are computed under both names, once each.
 template <class Named, class S>
 System<Named> renamed(System<S> scene) {
-  static_assert(std::is_base_of_v<S, Named> && sizeof(Named) == sizeof(S) && std::is_aggregate_v<Named>,
-                "flange::renamed<Named>(scene): Named must be a class that derives from the scene's "
-                "decltype(scene)::scene_type and adds nothing (struct Named : decltype(scene)::scene_type {};)");
   return detail::named_system<Named>(static_cast<S&&>(scene));
 }
 
