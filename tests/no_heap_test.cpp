@@ -15,6 +15,7 @@
 #include <flange/forces/line_force.hpp>
 #include <flange/forces/world_force.hpp>
 #include <flange/simulate/checked.hpp>
+#include <flange/models/chain.hpp>
 #include <flange/simulate/jacobian.hpp>
 #include <flange/simulate/odeint.hpp>
 #include <flange/simulate/projected.hpp>
@@ -161,6 +162,10 @@ TEST_CASE("the residual, recovery, the Jacobian and the checked system allocate 
   std::mt19937 rng(6);
   const auto arm = models::robot_arm();
   const auto tree = models::tree<tree_shape>(test::tree_params<tree_shape.n>(rng));
+  const auto chain = models::chain<6, models::runtime_axes>(models::random_chain_params<6>(rng));
+  static_assert(detail::analytic_jacobian<std::remove_cvref_t<decltype(chain)>>());  // the analytic Jacobian, too
+  decltype(chain)::state_type c{};
+  for (auto& v : c) v = test::uniform(rng, -1, 1);
   decltype(tree)::state_type w{}, dw;
   for (auto& v : w) v = test::uniform(rng, -1, 1);
   const std::array<double, 2> x{0.3, 0.1};
@@ -175,6 +180,7 @@ TEST_CASE("the residual, recovery, the Jacobian and the checked system allocate 
           sum += jacobian(arm, 0.0, x).sum();
           sum += jacobian_finite_difference(arm, 0.0, x).sum();
           sum += jacobian(tree, 0.0, w).sum();
+          sum += jacobian(chain, 0.0, c).sum();
           checked(tree, b)(w, dw, 0.0);
           sum += dw[0];
         }) == 0);

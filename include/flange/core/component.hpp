@@ -182,6 +182,13 @@ auto eval_input(const In& in, const T& t, const X& x) {
   } else static_assert(always_false<In>, "flange: an input is a number, an Eigen vector, a callable f(t) or f(t, x)");
 }
 
+/// Whether an input reads the joint state (a callable f(t, x)), not only the
+/// time: a joint force with such an input depends on other joints'
+/// coordinates (dynamics/derivatives.hpp differentiates a joint's own force
+/// alone where none does).
+template <class In>
+inline constexpr bool input_reads_state = !is_constant_input<In> && !std::is_invocable_v<const In&, const double&>;
+
 // ------------------------------------------------------------ validation
 
 namespace detail {

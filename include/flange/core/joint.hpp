@@ -34,6 +34,10 @@
 //                                own to its motion
 //   generalized_force(t, x, q, v, tau)  inputs and axis laws on its coordinates
 //   elastic_energy(q)            the potential energy of its axis law
+//   force_reads_state            false when generalized_force reads only the
+//                                joint's own q and v and the time (no input
+//                                f(t, x)); without it, true: its exact
+//                                Jacobian then takes every direction
 //   fixed_subspace               true when m.col<k>() is the same at every q,
 //                                either way round: a scene whose joints all
 //                                hang from the World folds its constant mass
@@ -191,6 +195,16 @@ template <class J>
 concept has_generalized_force = requires(const J& j, const double* p, double* tau, const joint_state<double>& x) {
   j.generalized_force(0.0, x, p, p, tau);
 };
+
+/// Whether a joint's generalized force may read other joints' states (an
+/// input f(t, x)): the optional member force_reads_state, true where a joint
+/// with a force does not say.
+template <class J>
+constexpr bool force_reads_state() {
+  if constexpr (!has_generalized_force<J>) return false;
+  else if constexpr (requires { J::force_reads_state; }) return J::force_reads_state;
+  else return true;
+}
 
 /// A joint type that can close a loop: it says what it leaves free, and
 /// has no force of its own (a drive or an axis law on a cut joint would act

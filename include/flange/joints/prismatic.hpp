@@ -134,6 +134,9 @@ class Prismatic {
   static constexpr bool reversible = true;
   /// Its axis is fixed in its link: S does not depend on q (core/joint.hpp).
   static constexpr bool fixed_subspace = true;
+  /// Its generalized force reads other joints' states only through a force
+  /// input f(t, x) (core/joint.hpp).
+  static constexpr bool force_reads_state = input_reads_state<Force>;
   /// It does not turn; it slides in the plane normal to k when its axis is another coordinate axis.
   static constexpr int planar_normal() { return -2; }
   static constexpr bool moves_in_plane(int k) { return Axis::fixed && Axis::index != k; }

@@ -198,6 +198,9 @@ class Revolute {
   static constexpr bool reversible = true;
   /// Its axis is fixed in its link: S does not depend on q (core/joint.hpp).
   static constexpr bool fixed_subspace = true;
+  /// Its generalized force reads other joints' states only through a drive
+  /// τ(t, x) (core/joint.hpp).
+  static constexpr bool force_reads_state = driven && input_reads_state<Tau>;
   /// It turns about its axis: a coordinate axis makes it planar about that axis.
   static constexpr int planar_normal() { return Axis::fixed ? Axis::index : -1; }
   static constexpr bool moves_in_plane(int k) { return Axis::fixed && Axis::index == k; }

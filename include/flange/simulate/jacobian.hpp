@@ -1,5 +1,8 @@
-// The exact Jacobian ∂f/∂x of a scene's derivative, by forward-mode dual
-// numbers through the scalar-templated dynamics (used by rosenbrock4.hpp).
+// The exact Jacobian ∂f/∂x of a scene's derivative (used by rosenbrock4.hpp
+// and linearize.hpp): for a tree of one-axis joints, from the analytic
+// derivatives of inverse dynamics (dynamics/derivatives.hpp, O(N²)); for
+// every other scene by forward-mode dual numbers through the
+// scalar-templated dynamics (jacobian_dual, which is also there for any scene).
 //
 // jacobian_finite_difference is the usual stand-in, central differences, for
 // comparison: 2·(n + 1) derivative evaluations and about 1e-10 relative
@@ -14,6 +17,7 @@
 #include <cmath>
 #include <limits>
 
+#include "flange/dynamics/derivatives.hpp"
 #include "flange/math/dual.hpp"
 #include "flange/simulate/system.hpp"
 
@@ -37,9 +41,9 @@ constexpr int jacobian_passes(int n) { return (n + jacobian_max_directions - 1) 
 constexpr int jacobian_width(int n) { return (n + jacobian_passes(n) - 1) / jacobian_passes(n); }
 }  // namespace detail
 
-/// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given.
+/// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given, by dual numbers.
 template <class S, class State>
-jacobian_matrix<S> jacobian(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
   S::require_state_size(x);
   constexpr int n = S::n_state, directions = n + 1;  // the n states, then t
   constexpr int K = detail::jacobian_width(directions);
@@ -60,6 +64,33 @@ jacobian_matrix<S> jacobian(const S& scene, double t, const State& x, Eigen::Mat
       }
   }
   return J;
+}
+
+/// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given: analytic where
+/// dynamics/derivatives.hpp covers the scene, else by dual numbers.
+template <class S, class State>
+jacobian_matrix<S> jacobian(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+  if constexpr (detail::analytic_jacobian<S>()) {
+    S::require_state_size(x);
+    constexpr int nq = S::n_q, nv = S::n_v;
+    std::array<double, S::n_state> xs, f;
+    for (int i = 0; i < S::n_state; ++i) xs[i] = x[i];
+    scene(xs, f, t);
+    detail::derivative_rows<S> d;
+    detail::acceleration_derivatives(scene, t, xs.data(), xs.data() + nq, f.data() + nq, d);
+    jacobian_matrix<S> J;
+    J.template topRows<nq>().setZero();
+    for (int i = 0; i < nv; ++i) J(i, nq + i) = 1;  // q̇ = v: one-axis joints
+    constexpr auto row = detail::derivative_row_rate<S>;
+    for (int r = 0; r < nv; ++r) J.row(nq + row[r]) = d.row(r).template head<2 * nv>();
+    if (dfdt) {
+      dfdt->template head<nq>().setZero();
+      for (int r = 0; r < nv; ++r) (*dfdt)(nq + row[r]) = d(r, 2 * nv);
+    }
+    return J;
+  } else {
+    return jacobian_dual(scene, t, x, dfdt);
+  }
 }
 
 /// ∂f/∂x (and ∂f/∂t into *dfdt) by central differences, step
