@@ -40,31 +40,33 @@
 
 namespace flange::detail {
 
-using vec6 = Eigen::Matrix<double, 6, 1>;
-
 /// a × b, always inlined (Eigen's cross of two blocks is a call under GCC).
 FLANGE_INLINE Vec3d cross3(const Vec3d& a, const Vec3d& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-/// The motion cross product v × w (angular parts first).
-FLANGE_INLINE vec6 motion_cross(const vec6& v, const vec6& w) {
-  vec6 r;
-  const Vec3d va = v.head<3>(), vl = v.tail<3>(), wa = w.head<3>(), wl = w.tail<3>();
-  r << cross3(va, wa), cross3(va, wl) + cross3(vl, wa);
-  return r;
+/// A spatial vector at the world origin, world coordinates: motion
+/// (angular a, linear l) or force (torque a, force l).
+struct spatial {
+  Vec3d a, l;
+  FLANGE_INLINE friend spatial operator+(const spatial& x, const spatial& y) { return {x.a + y.a, x.l + y.l}; }
+  FLANGE_INLINE friend spatial operator-(const spatial& x, const spatial& y) { return {x.a - y.a, x.l - y.l}; }
+  FLANGE_INLINE friend spatial operator*(const spatial& x, double c) { return {x.a * c, x.l * c}; }
+  FLANGE_INLINE spatial& operator+=(const spatial& y) {
+    a += y.a;
+    l += y.l;
+    return *this;
+  }
+  FLANGE_INLINE double dot(const spatial& y) const { return a.dot(y.a) + l.dot(y.l); }
+};
+
+/// The motion cross product v × w.
+FLANGE_INLINE spatial motion_cross(const spatial& v, const spatial& w) {
+  return {cross3(v.a, w.a), cross3(v.a, w.l) + cross3(v.l, w.a)};
 }
 /// The force cross product v ×* f.
-FLANGE_INLINE vec6 force_cross(const vec6& v, const vec6& f) {
-  vec6 r;
-  const Vec3d va = v.head<3>(), vl = v.tail<3>(), fa = f.head<3>(), fl = f.tail<3>();
-  r << cross3(va, fa) + cross3(vl, fl), cross3(va, fl);
-  return r;
-}
-FLANGE_INLINE Mat3d skew(const Vec3d& a) {
-  Mat3d r;
-  r << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return r;
+FLANGE_INLINE spatial force_cross(const spatial& v, const spatial& f) {
+  return {cross3(v.a, f.a) + cross3(v.l, f.l), cross3(v.a, f.l)};
 }
 
 /// A rigid body's spatial inertia at the world origin: mass, first moment
@@ -74,11 +76,12 @@ struct world_inertia {
   Vec3d h;
   Mat3d I;
   /// I·x: the momentum of motion x.
-  FLANGE_INLINE vec6 operator*(const vec6& x) const {
-    vec6 r;
-    const Vec3d xa = x.head<3>(), xl = x.tail<3>();
-    r << I * xa + cross3(h, xl), m * xl - cross3(h, xa);
-    return r;
+  FLANGE_INLINE spatial operator*(const spatial& x) const { return {I * x.a + cross3(h, x.l), m * x.l - cross3(h, x.a)}; }
+  FLANGE_INLINE world_inertia& operator+=(const world_inertia& o) {
+    m += o.m;
+    h += o.h;
+    I += o.I;
+    return *this;
   }
 };
 
@@ -95,31 +98,40 @@ FLANGE_INLINE world_inertia to_world(const rigid_inertia<double>& b, const Mat3d
 /// − v_k ×* (I_k·w). Written out by 3 × 3 blocks (W = ω̃, V = ṽ, H = h̃ for
 /// I_k = [I H; −H m]), B_k = X + Xᵀ + [ℓ̃ p̃; p̃ 0] with X = I_k·(v_k×) and
 /// (ℓ, p) = I_k·v_k, its right half is zero and its left half is
-/// T = I·W + H·V + (I·W + H·V)ᵀ + ℓ̃ above K = 2·p̃: B·w reads w's angular part
-/// alone.
+/// T = I·W − W·I + v·hᵀ + h·vᵀ − 2·(h·v)·1 + ℓ̃ above K = k̃, k = 2·p: B·w
+/// reads w's angular part alone.
 struct velocity_coupling {
-  Mat3d T, K;
-  velocity_coupling& operator+=(const velocity_coupling& o) {
+  Mat3d T;
+  Vec3d k;
+  FLANGE_INLINE velocity_coupling& operator+=(const velocity_coupling& o) {
     T += o.T;
-    K += o.K;
+    k += o.k;
     return *this;
   }
   /// B·w.
-  FLANGE_INLINE vec6 operator*(const vec6& w) const {
-    vec6 r;
-    r << T * w.template head<3>(), K * w.template head<3>();
-    return r;
-  }
+  FLANGE_INLINE spatial operator*(const spatial& w) const { return {T * w.a, cross3(k, w.a)}; }
   /// The angular part of Bᵀ·s (its linear part is zero).
-  FLANGE_INLINE Vec3d transposed_times(const vec6& s) const {
-    return T.transpose() * s.template head<3>() + K.transpose() * s.template tail<3>();
-  }
+  FLANGE_INLINE Vec3d transposed_times(const spatial& s) const { return T.transpose() * s.a + cross3(s.l, k); }
 };
-FLANGE_INLINE velocity_coupling coupling_of(const world_inertia& I, const vec6& v) {
-  const Vec3d w = v.template head<3>(), vl = v.template tail<3>();
-  const Mat3d X = I.I * skew(w) + skew(I.h) * skew(vl);
-  const vec6 h = I * v;
-  return {X + X.transpose() + skew(h.template head<3>()), 2 * skew(h.template tail<3>())};
+/// B of a body of inertia I moving at v, with its momentum h = I·v.
+FLANGE_INLINE velocity_coupling coupling_of(const world_inertia& I, const spatial& v, const spatial& h) {
+  // I·W − W·I: column j of I·W is I·(ω × e_j).
+  Mat3d X;
+  X.col(0) = I.I * Vec3d(0, v.a[2], -v.a[1]);
+  X.col(1) = I.I * Vec3d(-v.a[2], 0, v.a[0]);
+  X.col(2) = I.I * Vec3d(v.a[1], -v.a[0], 0);
+  Mat3d T = X + X.transpose() + v.l * I.h.transpose() + I.h * v.l.transpose();
+  const double hv = 2 * I.h.dot(v.l);
+  T(0, 0) -= hv;
+  T(1, 1) -= hv;
+  T(2, 2) -= hv;
+  T(0, 1) -= h.a[2];
+  T(1, 0) += h.a[2];
+  T(0, 2) += h.a[1];
+  T(2, 0) -= h.a[1];
+  T(1, 2) -= h.a[0];
+  T(2, 1) += h.a[0];
+  return {T, 2 * h.l};
 }
 
 /// The rotation matrix of a typed rotation E (x_child = E·x_parent).
@@ -151,6 +163,33 @@ constexpr bool analytic_derivatives() {
     }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
   }
 }
+
+/// Each link's descendants, as lists: those of link k are
+/// list[start[k]] … list[start[k + 1] − 1].
+template <class S>
+struct descendant_lists {
+  static constexpr int NL = S::tree.n_links;
+  static constexpr int total = [] {
+    int n = 0;
+    for (int c = 1; c < NL; ++c)
+      for (int a = S::tree.link_parent[c]; a != 0; a = S::tree.link_parent[a]) ++n;
+    return n;
+  }();
+  static constexpr std::array<int, NL + 1> start = [] {
+    std::array<int, NL + 1> r{};
+    for (int c = 1; c < NL; ++c)
+      for (int a = S::tree.link_parent[c]; a != 0; a = S::tree.link_parent[a]) ++r[a + 1];
+    for (int k = 1; k <= NL; ++k) r[k] += r[k - 1];
+    return r;
+  }();
+  static constexpr std::array<int, total> list = [] {
+    std::array<int, total> r{};
+    std::array<int, NL + 1> fill = start;
+    for (int c = 1; c < NL; ++c)
+      for (int a = S::tree.link_parent[c]; a != 0; a = S::tree.link_parent[a]) r[fill[a]++] = c;
+    return r;
+  }();
+};
 
 /// The matrix acceleration_derivatives fills: a row per rate, in link order.
 template <class S>
@@ -187,7 +226,7 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
   // the parent's coordinates) and its column (link coordinates).
   std::array<Mat3d, NL> E;
   std::array<Vec3d, NL> p;
-  std::array<vec6, NL> col;
+  std::array<spatial, NL> col;
   {
     const auto motions = link_motions<spatial_algebra, double, true>(scene, q);
     for_links<S>([&](auto l) {
@@ -196,7 +235,7 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
       E[L] = dense_rotation(m.E());
       p[L] = m.p.dense();
       const auto c = m.template col<0>();
-      col[L] << c.ang.dense(), c.lin.dense();
+      col[L] = {c.ang.dense(), c.lin.dense()};
     });
   }
 
@@ -204,28 +243,28 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
   // world, each body's inertia, wrench and velocity coupling.
   std::array<Mat3d, NL> R;
   std::array<Vec3d, NL> r;
-  std::array<vec6, NL> s, vel, acc, u, psi, F;
+  std::array<spatial, NL> s, vel, acc, u, psi, F;
   std::array<world_inertia, NL> Ic;
   std::array<velocity_coupling, NL> Bc;
   R[0].setIdentity();
   r[0].setZero();
-  vel[0].setZero();
-  acc[0].setZero();
-  if constexpr (S::has_gravity) acc[0].template tail<3>() = scene.model().minus_g;
+  vel[0] = acc[0] = {Vec3d::Zero(), Vec3d::Zero()};
+  if constexpr (S::has_gravity) acc[0].l = scene.model().minus_g;
   for (int L = 1; L < NL; ++L) {
     const int P = parent[L];
     R[L] = R[P] * E[L].transpose();
     r[L] = r[P] + R[P] * p[L];
-    const Vec3d w = R[L] * col[L].template head<3>();
-    s[L] << w, R[L] * col[L].template tail<3>() + cross3(r[L], w);
+    const Vec3d w = R[L] * col[L].a;
+    s[L] = {w, R[L] * col[L].l + cross3(r[L], w)};
     const double qd = v[rate[L]], qdd = vdot[rate[L]];
     vel[L] = vel[P] + s[L] * qd;
     acc[L] = acc[P] + s[L] * qdd + motion_cross(vel[L], s[L]) * qd;
     u[L] = motion_cross(s[L], vel[P]);
     psi[L] = motion_cross(s[L], acc[P]) - motion_cross(u[L], vel[P]);
     Ic[L] = to_world(scene.model().link[L], R[L], r[L]);
-    F[L] = Ic[L] * acc[L] + force_cross(vel[L], Ic[L] * vel[L]);
-    Bc[L] = coupling_of(Ic[L], vel[L]);
+    const spatial h = Ic[L] * vel[L];
+    F[L] = Ic[L] * acc[L] + force_cross(vel[L], h);
+    Bc[L] = coupling_of(Ic[L], vel[L], h);
   }
 
   // Up the tree: the composites, then the pairs of link L with its ancestors
@@ -241,24 +280,22 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
   if constexpr (!chain) out.setZero();
   for (int L = NL - 1; L >= 1; --L) {
     const int i = rate[L];
-    const vec6 y = Ic[L] * s[L];
+    const spatial y = Ic[L] * s[L];
     const Vec3d z = Bc[L].transposed_times(s[L]);
     for (int j = L; j != 0; j = parent[j]) {
       const int k = rate[j];
       M(L - 1, j - 1) = y.dot(s[j]);
-      out(L - 1, k) = y.dot(psi[j]) - z.dot(u[j].template head<3>());
-      out(L - 1, N + k) = z.dot(s[j].template head<3>()) + 2 * y.dot(u[j]);
+      out(L - 1, k) = y.dot(psi[j]) - z.dot(u[j].a);
+      out(L - 1, N + k) = z.dot(s[j].a) + 2 * y.dot(u[j]);
     }
-    const vec6 G = force_cross(s[L], F[L]) + Bc[L] * u[L] - Ic[L] * psi[L];
-    const vec6 H = Bc[L] * s[L] + 2 * (Ic[L] * u[L]);
+    const spatial G = force_cross(s[L], F[L]) + Bc[L] * u[L] - Ic[L] * psi[L];
+    const spatial H = Bc[L] * s[L] + Ic[L] * u[L] * 2;
     for (int j = parent[L]; j != 0; j = parent[j]) {
       out(j - 1, i) = -s[j].dot(G);
       out(j - 1, N + i) = s[j].dot(H);
     }
     if (const int P = parent[L]; P != 0) {
-      Ic[P].m += Ic[L].m;
-      Ic[P].h += Ic[L].h;
-      Ic[P].I += Ic[L].I;
+      Ic[P] += Ic[L];
       Bc[P] += Bc[L];
       F[P] += F[L];
     }
@@ -292,29 +329,68 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
   // M = Cᵀ·C (Featherstone's LTL factorization, leaves first: C has the
   // tree's zeros, where a root-first factor would join siblings), then
   // Cᵀ·C·X = out row by row, each step a row operation over 2N + 1 columns.
-  for (int k = NL - 1; k >= 1; --k) {
-    const double d = std::sqrt(M(k - 1, k - 1));
-    M(k - 1, k - 1) = d;
-    for (int i = parent[k]; i != 0; i = parent[i]) M(k - 1, i - 1) /= d;
-    for (int i = parent[k]; i != 0; i = parent[i])
-      for (int j = i; j != 0; j = parent[j]) M(i - 1, j - 1) -= M(k - 1, i - 1) * M(k - 1, j - 1);
-  }
-  // In blocks of columns small enough to stay in the first-level cache.
-  auto solve = [&]<int W>(int c0, std::integral_constant<int, W>) {
-    auto row = [&](int k) { return out.row(k - 1).template segment<W>(c0); };
+  if constexpr (chain) {
+    // Every link above k: dense loops the compiler vectorizes.
+    std::array<double, N> c;
+    for (int k = N - 1; k >= 0; --k) {
+      const double d = std::sqrt(M(k, k)), e = 1 / d;
+      M(k, k) = d;
+      for (int i = 0; i < k; ++i) c[i] = M(k, i) = M(k, i) * e;
+      for (int j = 0; j < k; ++j)
+        for (int i = j; i < k; ++i) M(i, j) -= c[i] * c[j];
+    }
+  } else {
     for (int k = NL - 1; k >= 1; --k) {
-      row(k) /= M(k - 1, k - 1);
-      for (int i = parent[k]; i != 0; i = parent[i]) row(i) -= M(k - 1, i - 1) * row(k);
+      const double d = std::sqrt(M(k - 1, k - 1));
+      M(k - 1, k - 1) = d;
+      for (int i = parent[k]; i != 0; i = parent[i]) M(k - 1, i - 1) /= d;
+      for (int i = parent[k]; i != 0; i = parent[i])
+        for (int j = i; j != 0; j = parent[j]) M(i - 1, j - 1) -= M(k - 1, i - 1) * M(k - 1, j - 1);
+    }
+  }
+  // Both triangular solves as sums into one row held in registers, over a
+  // block of columns at a time: Cᵀ·y = b from the leaves,
+  // y_k = (b_k − Σ_{c below k} C(c, k)·y_c) / C(k, k), then C·x = y from the
+  // root, x_k = (y_k − Σ_{a above k} C(k, a)·x_a) / C(k, k).
+  using below = descendant_lists<S>;
+  std::array<double, NL> inv;
+  for (int k = 1; k < NL; ++k) inv[k] = 1 / M(k - 1, k - 1);
+  auto solve = [&]<int W>(int c0, std::integral_constant<int, W>) {
+    using Row = Eigen::Matrix<double, 1, W>;
+    auto row = [&](int k) { return out.row(k - 1).template segment<W>(c0); };
+    // Two sums in turn, so that each waits on its own last product only.
+    for (int k = NL - 1; k >= 1; --k) {
+      Row acc = row(k), acc2 = Row::Zero();
+      int e = below::start[k];
+      const int end = below::start[k + 1];
+      for (; e + 1 < end; e += 2) {
+        acc -= M(below::list[e] - 1, k - 1) * row(below::list[e]);
+        acc2 -= M(below::list[e + 1] - 1, k - 1) * row(below::list[e + 1]);
+      }
+      if (e < end) acc -= M(below::list[e] - 1, k - 1) * row(below::list[e]);
+      row(k) = (acc + acc2) * inv[k];
     }
     for (int k = 1; k < NL; ++k) {
-      for (int i = parent[k]; i != 0; i = parent[i]) row(k) -= M(k - 1, i - 1) * row(i);
-      row(k) /= M(k - 1, k - 1);
+      Row acc = row(k), acc2 = Row::Zero();
+      int a = parent[k];
+      for (; a != 0 && parent[a] != 0; a = parent[parent[a]]) {
+        acc -= M(k - 1, a - 1) * row(a);
+        acc2 -= M(k - 1, parent[a] - 1) * row(parent[a]);
+      }
+      if (a != 0) acc -= M(k - 1, a - 1) * row(a);
+      row(k) = (acc + acc2) * inv[k];
     }
   };
-  constexpr int C = 2 * N + 1, W = C < 32 ? C : 32;
-  int c0 = 0;
-  for (; c0 + W <= C; c0 += W) solve(c0, std::integral_constant<int, W>{});
-  if constexpr (C % W != 0) solve(C - C % W, std::integral_constant<int, C % W>{});
+  // One block up to 40 columns; else blocks of 16, the last one taking the
+  // remainder (16 to 31 columns), so that no block is a narrow tail.
+  constexpr int C = 2 * N + 1;
+  if constexpr (C <= 40) {
+    solve(0, std::integral_constant<int, C>{});
+  } else {
+    constexpr int last = 16 + C % 16;
+    for (int c0 = 0; c0 + last < C; c0 += 16) solve(c0, std::integral_constant<int, 16>{});
+    solve(C - last, std::integral_constant<int, last>{});
+  }
 }
 
 /// The rate of row r of acceleration_derivatives' result (links in order).
