@@ -163,7 +163,7 @@ TEST_CASE("the residual, recovery, the Jacobian and the checked system allocate 
   const auto arm = models::robot_arm();
   const auto tree = models::tree<tree_shape>(test::tree_params<tree_shape.n>(rng));
   const auto chain = models::chain<6, models::runtime_axes>(models::random_chain_params<6>(rng));
-  static_assert(detail::analytic_jacobian<std::remove_cvref_t<decltype(chain)>>());  // the analytic Jacobian, too
+  static_assert(detail::analytic_derivatives<std::remove_cvref_t<decltype(chain)>>());  // the analytic Jacobian, too
   decltype(chain)::state_type c{};
   for (auto& v : c) v = test::uniform(rng, -1, 1);
   decltype(tree)::state_type w{}, dw;

@@ -1,6 +1,6 @@
 // ∂v̇/∂q, ∂v̇/∂v and ∂v̇/∂t of a tree of one-axis joints, exactly, from the
 // derivatives of inverse dynamics (Carpentier and Mansard, "Analytical
-// derivatives of rigid body dynamics algorithms", RSS 2018), in O(N²):
+// derivatives of rigid body dynamics algorithms", RSS 2018):
 //
 //   ID(q, v, v̇) = Q(t, q, v)  ⇒  ∂v̇/∂x = M⁻¹·(∂Q/∂x − ∂ID/∂x)  at v̇ = f(t, x)
 //
@@ -20,7 +20,8 @@
 // and M's entries are s_iᵀ·I_i·s_j on the same pairs. A joint's own force Q
 // (an axis law, a drive of time) is differentiated by dual numbers in its own
 // q, v and t. One forward pass over the links, one backward pass that fills
-// the pairs, and one Cholesky solve of M with 2N + 1 right-hand sides.
+// the pairs of a link and its ancestors (O(N²) on a chain), and one Cholesky
+// solve of M with 2N + 1 right-hand sides (O(N³) on a chain).
 //
 // Which scenes take it (analytic_derivatives<S>): a tree (no loop, nothing
 // floating) of joints of one rate whose column is fixed in their link
@@ -30,10 +31,11 @@
 #pragma once
 #include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 #include <Eigen/Core>
 
-#include "flange/dynamics/algorithm.hpp"
 #include "flange/dynamics/forward_dynamics.hpp"
 #include "flange/dynamics/links.hpp"
 #include "flange/math/dual.hpp"
@@ -194,15 +196,6 @@ struct descendant_lists {
 /// The matrix acceleration_derivatives fills: a row per rate, in link order.
 template <class S>
 using derivative_rows = Eigen::Matrix<double, S::n_v, 2 * S::n_v + 1, Eigen::RowMajor>;
-
-/// Whether jacobian() takes the analytic derivatives: where they apply and
-/// the scene has two rates or more. With one rate, dual numbers through the
-/// derivative cost less (benchmarks/jacobian: a one-link chain 136 ns by
-/// dual numbers, 232 ns analytic; two links 1,694 against 538 ns).
-template <class S>
-constexpr bool analytic_jacobian() {
-  return analytic_derivatives<S>() && S::n_v >= 2;
-}
 
 /// ∂v̇/∂q, ∂v̇/∂v and ∂v̇/∂t at (t, q, v), given v̇ there, as the columns of
 /// out (columns in rate order; row r is rate derivative_row_rate<S>[r]).

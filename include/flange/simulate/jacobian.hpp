@@ -70,7 +70,7 @@ jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen
 /// dynamics/derivatives.hpp covers the scene, else by dual numbers.
 template <class S, class State>
 jacobian_matrix<S> jacobian(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
-  if constexpr (detail::analytic_jacobian<S>()) {
+  if constexpr (detail::analytic_derivatives<S>()) {
     S::require_state_size(x);
     constexpr int nq = S::n_q, nv = S::n_v;
     std::array<double, S::n_state> xs, f;
