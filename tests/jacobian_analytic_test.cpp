@@ -1,8 +1,10 @@
 // The analytic Jacobian (dynamics/derivatives.hpp) against the dual-number
 // Jacobian of the same scene (jacobian_dual: forward mode through the whole
-// derivative, sharing none of the derivative's arithmetic with it), over a
-// list of scene shapes, with the stack poisoned before each call so that a
-// value read before it is written shows as a wrong answer.
+// derivative, sharing none of the derivatives' arithmetic) and central
+// differences, over a list of scene shapes, with the stack poisoned before
+// each call so that a value read before it is written shows as a wrong
+// answer. (linearize_test.cpp holds the cart-pole's, analytic too, to its
+// closed form.)
 #include <catch2/catch.hpp>
 
 #include <flange/models/chain.hpp>
@@ -32,6 +34,12 @@ void agree(const S& scene, std::mt19937& rng, double t = 0.3) {
     CHECK((J - J_dual).cwiseAbs().maxCoeff() <= 1e-12 * scale);
     CHECK((ft - ft_dual).cwiseAbs().maxCoeff() <= 1e-12 * scale);
     CHECK(J.allFinite());
+    // And central differences to their accuracy (h = ε^(1/3): about 1e-10
+    // relative, so 1e-7 of the largest entry; jacobian_test.cpp's bar).
+    Eigen::Matrix<double, S::n_state, 1> ft_fd;
+    const auto J_fd = jacobian_finite_difference(scene, t, x, &ft_fd);
+    CHECK((J - J_fd).cwiseAbs().maxCoeff() <= 1e-7 * scale);
+    CHECK((ft - ft_fd).cwiseAbs().maxCoeff() <= 1e-7 * scale);
   }
 }
 
