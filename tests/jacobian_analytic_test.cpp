@@ -89,6 +89,46 @@ TEST_CASE("the analytic Jacobian equals the dual-number Jacobian on random trees
   check.operator()<23, 6, false>();
 }
 
+TEST_CASE("a planar scene's Jacobian in the plane's arithmetic equals the dual numbers in 3-D") {
+  // Everything the plane drops made non-zero: offsets, centre-of-mass offsets
+  // and gravity along the normal, products of inertia; joints either way
+  // round, prismatic joints along both in-plane axes, normals z and x.
+  std::mt19937 rng(4849);
+  for (int k = 0; k < 3; ++k) {
+    auto p = test::chain_params<5>(rng);
+    p.g = Vec3d(test::uniform(rng, -5, 5), -9.81, test::uniform(rng, -5, 5));
+    const auto c = models::chain<5, models::planar_axes>(p);
+    STATIC_REQUIRE(std::is_same_v<detail::geometry_of<std::remove_cvref_t<decltype(c)>>::type, detail::plane<2>>);
+    agree(c, rng);
+  }
+  const Vec3d off(0.3, -0.4, 0.7);
+  const auto z = scene(
+      World<"world">({.g = {1.0, -9.81, 2.0}}), Prismatic<"rail", axis::x>({.f = 0.4}),
+      Body<"cart", cm::offset>({.m = 1.4, .J = test::random_inertia(rng), .r_cm = off}),
+      FixedTranslation<"arm">({.d = off}), Revolute<"pivot", axis::z>{},  // reversed: frame_b toward the World
+      FixedTranslation<"rope">({.d = {1.0, 0.2, 0.3}}), Body<"load">({.m = 0.9, .J = test::random_inertia(rng)}),
+      Prismatic<"slide", axis::y>({.f = -0.3}), Body<"tip">({.m = 0.3, .J = test::random_inertia(rng)}),
+      connect<"world.frame_b", "rail.frame_a">, connect<"rail.frame_b", "cart.frame_a">,
+      connect<"rail.frame_b", "arm.frame_a">, connect<"arm.frame_b", "pivot.frame_b">,
+      connect<"pivot.frame_a", "rope.frame_a">, connect<"rope.frame_b", "load.frame_a">,
+      connect<"rope.frame_b", "slide.frame_a">, connect<"slide.frame_b", "tip.frame_a">);
+  STATIC_REQUIRE(std::is_same_v<detail::geometry_of<std::remove_cvref_t<decltype(z)>>::type, detail::plane<2>>);
+  agree(z, rng);
+  const auto x = scene(
+      World<"world">({.g = {-3.0, -9.81, 1.0}}), Revolute<"shoulder", axis::x>{},
+      FixedTranslation<"upper">({.d = {0.4, 0.5, -0.2}}),
+      Body<"b1", cm::offset>({.m = 1.1, .J = test::random_inertia(rng), .r_cm = Vec3d(0.3, 0.1, 0.2)}),
+      Prismatic<"reach", axis::z>{}, Body<"b2">({.m = 0.6, .J = test::random_inertia(rng)}),
+      Revolute<"wrist", axis::x>{}, FixedTranslation<"hand">({.d = {-0.2, 0.0, 0.3}}),
+      Body<"b3">({.m = 0.4, .J = test::random_inertia(rng)}), connect<"world.frame_b", "shoulder.frame_a">,
+      connect<"shoulder.frame_b", "upper.frame_a">, connect<"upper.frame_b", "b1.frame_a">,
+      connect<"upper.frame_b", "reach.frame_a">, connect<"reach.frame_b", "b2.frame_a">,
+      connect<"b2.frame_a", "wrist.frame_b">,  // reversed
+      connect<"wrist.frame_a", "hand.frame_a">, connect<"hand.frame_b", "b3.frame_a">);
+  STATIC_REQUIRE(std::is_same_v<detail::geometry_of<std::remove_cvref_t<decltype(x)>>::type, detail::plane<0>>);
+  agree(x, rng);
+}
+
 TEST_CASE("a drive of time is differentiated in t, a drive of the state takes dual numbers") {
   std::mt19937 rng(7);
   auto tau = [](auto t) {

@@ -259,7 +259,7 @@ pose<T> relative_pose_of(const J& j, const T* q) {
   } else {
     const auto m = j.template motion<T, 1, true>(q);
     pose<T> x;
-    for (int k = 0; k < 3; ++k) x.R.col(k) = rot(m.E, to_svec(Vec3<T>(Vec3<T>::Unit(k)))).dense();
+    x.R = dense_rotation<T>(m.E);
     x.p = m.p.dense();
     return x;
   }

@@ -17,7 +17,12 @@
 //   i a strict ancestor of j:  ∂τ_i/∂q_j = s_iᵀ·(s_j ×* F_j + B_j·u_j − I_j·ψ_j)
 //                              ∂τ_i/∂v_j = −s_iᵀ·(B_j·s_j + 2·I_j·u_j)
 //
-// and M's entries are s_iᵀ·I_i·s_j on the same pairs. A joint's own force Q
+// and M's entries are s_iᵀ·I_i·s_j on the same pairs. The passes are written
+// once over a geometry: 3-D space, or for a planar scene (dynamics/algebra.hpp's
+// planar_axis) the plane normal to its axis K, where a motion is ω along K
+// and an in-plane velocity, an inertia is m, an in-plane first moment and
+// I_KK, and B is T_KK and an in-plane k: a tenth of the arithmetic, and what
+// it drops changes no q̈. A joint's own force Q
 // (an axis law, a drive of time) is differentiated by dual numbers in its own
 // q, v and t. One forward pass over the links, one backward pass that fills
 // the pairs of a link and its ancestors (O(N²) on a chain), and one Cholesky
@@ -42,15 +47,36 @@
 
 namespace flange::detail {
 
-/// a × b, always inlined (Eigen's cross of two blocks is a call under GCC).
-FLANGE_INLINE Vec3d cross3(const Vec3d& a, const Vec3d& b) {
+/// The cross products the passes need, by the kind of each side: in space two
+/// 3-vectors; in the plane normal to K an angular quantity is its component
+/// along K (a double) and a linear one its in-plane components (a, b) with
+/// e_a × e_b = e_K, so that ω·e_K × l = ω·(−l_b, l_a), r × ω·e_K =
+/// ω·(r_b, −r_a), x × y (both in the plane) = (x_a·y_b − x_b·y_a)·e_K and
+/// two angular quantities commute. Always inlined (Eigen's cross of two
+/// blocks is a call under GCC).
+FLANGE_INLINE Vec3d cross(const Vec3d& a, const Vec3d& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
+FLANGE_INLINE double cross(double, double) { return 0; }
+FLANGE_INLINE Vec2d cross(double w, const Vec2d& l) { return {-w * l[1], w * l[0]}; }
+FLANGE_INLINE Vec2d cross(const Vec2d& r, double w) { return {w * r[1], -w * r[0]}; }
+FLANGE_INLINE double cross(const Vec2d& x, const Vec2d& y) { return x[0] * y[1] - x[1] * y[0]; }
+FLANGE_INLINE double inner(double x, double y) { return x * y; }
+FLANGE_INLINE double inner(const Vec3d& x, const Vec3d& y) { return x.dot(y); }
+/// R·a for an angular quantity: about K in the plane, which R leaves alone.
+FLANGE_INLINE Vec3d turn(const Mat3d& R, const Vec3d& a) { return R * a; }
+FLANGE_INLINE double turn(const Mat2d&, double a) { return a; }
+/// Tᵀ·a.
+FLANGE_INLINE Vec3d transpose_times(const Mat3d& T, const Vec3d& a) { return T.transpose() * a; }
+FLANGE_INLINE double transpose_times(double T, double a) { return T * a; }
 
 /// A spatial vector at the world origin, world coordinates: motion
-/// (angular a, linear l) or force (torque a, force l).
+/// (angular a, linear l) or force (torque a, force l), in 3-D (G = space)
+/// or in the plane (G = plane<K>).
+template <class G>
 struct spatial {
-  Vec3d a, l;
+  typename G::ang a;
+  typename G::lin l;
   FLANGE_INLINE friend spatial operator+(const spatial& x, const spatial& y) { return {x.a + y.a, x.l + y.l}; }
   FLANGE_INLINE friend spatial operator-(const spatial& x, const spatial& y) { return {x.a - y.a, x.l - y.l}; }
   FLANGE_INLINE friend spatial operator*(const spatial& x, double c) { return {x.a * c, x.l * c}; }
@@ -59,26 +85,32 @@ struct spatial {
     l += y.l;
     return *this;
   }
-  FLANGE_INLINE double dot(const spatial& y) const { return a.dot(y.a) + l.dot(y.l); }
+  FLANGE_INLINE double dot(const spatial& y) const { return inner(a, y.a) + l.dot(y.l); }
 };
 
 /// The motion cross product v × w.
-FLANGE_INLINE spatial motion_cross(const spatial& v, const spatial& w) {
-  return {cross3(v.a, w.a), cross3(v.a, w.l) + cross3(v.l, w.a)};
+template <class G>
+FLANGE_INLINE spatial<G> motion_cross(const spatial<G>& v, const spatial<G>& w) {
+  return {cross(v.a, w.a), cross(v.a, w.l) + cross(v.l, w.a)};
 }
 /// The force cross product v ×* f.
-FLANGE_INLINE spatial force_cross(const spatial& v, const spatial& f) {
-  return {cross3(v.a, f.a) + cross3(v.l, f.l), cross3(v.a, f.l)};
+template <class G>
+FLANGE_INLINE spatial<G> force_cross(const spatial<G>& v, const spatial<G>& f) {
+  return {cross(v.a, f.a) + cross(v.l, f.l), cross(v.a, f.l)};
 }
 
 /// A rigid body's spatial inertia at the world origin: mass, first moment
-/// h = m·c and rotational inertia about the origin, world coordinates.
+/// h = m·c and rotational inertia about the origin (in the plane: about K),
+/// world coordinates.
+template <class G>
 struct world_inertia {
   double m;
-  Vec3d h;
-  Mat3d I;
+  typename G::lin h;
+  typename G::moment I;
   /// I·x: the momentum of motion x.
-  FLANGE_INLINE spatial operator*(const spatial& x) const { return {I * x.a + cross3(h, x.l), m * x.l - cross3(h, x.a)}; }
+  FLANGE_INLINE spatial<G> operator*(const spatial<G>& x) const {
+    return {I * x.a + cross(h, x.l), m * x.l - cross(h, x.a)};
+  }
   FLANGE_INLINE world_inertia& operator+=(const world_inertia& o) {
     m += o.m;
     h += o.h;
@@ -87,62 +119,112 @@ struct world_inertia {
   }
 };
 
-/// A link's inertia (m, h, I in link coordinates about the link origin) at the
-/// link's world pose (R: link → world, r: its origin).
-FLANGE_INLINE world_inertia to_world(const rigid_inertia<double>& b, const Mat3d& R, const Vec3d& r) {
-  const Vec3d Rh = R * b.h;
-  Mat3d I = R * b.I * R.transpose() - b.m * r * r.transpose() - Rh * r.transpose() - r * Rh.transpose();
-  I.diagonal().array() += b.m * r.squaredNorm() + 2 * r.dot(Rh);
-  return {b.m, Rh + b.m * r, I};
-}
-
 /// The sum of B_k over bodies k, where B_k·w = I_k·(v_k × w) − w ×* (I_k·v_k)
 /// − v_k ×* (I_k·w). Written out by 3 × 3 blocks (W = ω̃, V = ṽ, H = h̃ for
 /// I_k = [I H; −H m]), B_k = X + Xᵀ + [ℓ̃ p̃; p̃ 0] with X = I_k·(v_k×) and
 /// (ℓ, p) = I_k·v_k, its right half is zero and its left half is
 /// T = I·W − W·I + v·hᵀ + h·vᵀ − 2·(h·v)·1 + ℓ̃ above K = k̃, k = 2·p: B·w
-/// reads w's angular part alone.
+/// reads w's angular part alone. In the plane T is its entry T_KK = −2·(h·v).
+template <class G>
 struct velocity_coupling {
-  Mat3d T;
-  Vec3d k;
+  typename G::moment T;
+  typename G::lin k;
   FLANGE_INLINE velocity_coupling& operator+=(const velocity_coupling& o) {
     T += o.T;
     k += o.k;
     return *this;
   }
   /// B·w.
-  FLANGE_INLINE spatial operator*(const spatial& w) const { return {T * w.a, cross3(k, w.a)}; }
+  FLANGE_INLINE spatial<G> operator*(const spatial<G>& w) const { return {T * w.a, cross(k, w.a)}; }
   /// The angular part of Bᵀ·s (its linear part is zero).
-  FLANGE_INLINE Vec3d transposed_times(const spatial& s) const { return T.transpose() * s.a + cross3(s.l, k); }
+  FLANGE_INLINE typename G::ang transposed_times(const spatial<G>& s) const {
+    return transpose_times(T, s.a) + cross(s.l, k);
+  }
 };
-/// B of a body of inertia I moving at v, with its momentum h = I·v.
-FLANGE_INLINE velocity_coupling coupling_of(const world_inertia& I, const spatial& v, const spatial& h) {
-  // I·W − W·I: column j of I·W is I·(ω × e_j).
-  Mat3d X;
-  X.col(0) = I.I * Vec3d(0, v.a[2], -v.a[1]);
-  X.col(1) = I.I * Vec3d(-v.a[2], 0, v.a[0]);
-  X.col(2) = I.I * Vec3d(v.a[1], -v.a[0], 0);
-  Mat3d T = X + X.transpose() + v.l * I.h.transpose() + I.h * v.l.transpose();
-  const double hv = 2 * I.h.dot(v.l);
-  T(0, 0) -= hv;
-  T(1, 1) -= hv;
-  T(2, 2) -= hv;
-  T(0, 1) -= h.a[2];
-  T(1, 0) += h.a[2];
-  T(0, 2) += h.a[1];
-  T(2, 0) -= h.a[1];
-  T(1, 2) -= h.a[0];
-  T(2, 1) += h.a[0];
-  return {T, 2 * h.l};
-}
 
-/// The rotation matrix of a typed rotation E (x_child = E·x_parent).
-template <class E>
-Mat3d dense_rotation(const E& e) {
-  Mat3d R;
-  for (int k = 0; k < 3; ++k) R.col(k) = rot(e, to_svec(Vec3d(Vec3d::Unit(k)))).dense();
-  return R;
-}
+/// The passes' world in 3-D: the scene's quantities as they are.
+struct space {
+  using ang = Vec3d;
+  using lin = Vec3d;
+  using moment = Mat3d;  // a rotational inertia
+  static ang zero_ang() { return Vec3d::Zero(); }
+  static ang ang_of(const Vec3d& x) { return x; }
+  static lin lin_of(const Vec3d& x) { return x; }
+  template <class E>
+  static Mat3d rotation_of(const E& e) {
+    return dense_rotation<double>(e);
+  }
+  /// A link's inertia (m, h, I in link coordinates about the link origin) at
+  /// the link's world pose (R: link → world, r: its origin).
+  FLANGE_INLINE static world_inertia<space> to_world(const rigid_inertia<double>& b, const Mat3d& R, const Vec3d& r) {
+    const Vec3d Rh = R * b.h;
+    Mat3d I = R * b.I * R.transpose() - b.m * r * r.transpose() - Rh * r.transpose() - r * Rh.transpose();
+    I.diagonal().array() += b.m * r.squaredNorm() + 2 * r.dot(Rh);
+    return {b.m, Rh + b.m * r, I};
+  }
+  /// B of a body of inertia I moving at v, with its momentum h = I·v.
+  FLANGE_INLINE static velocity_coupling<space> coupling_of(const world_inertia<space>& I, const spatial<space>& v,
+                                                            const spatial<space>& h) {
+    // I·W − W·I: column j of I·W is I·(ω × e_j).
+    Mat3d X;
+    X.col(0) = I.I * Vec3d(0, v.a[2], -v.a[1]);
+    X.col(1) = I.I * Vec3d(-v.a[2], 0, v.a[0]);
+    X.col(2) = I.I * Vec3d(v.a[1], -v.a[0], 0);
+    Mat3d T = X + X.transpose() + v.l * I.h.transpose() + I.h * v.l.transpose();
+    const double hv = 2 * I.h.dot(v.l);
+    T(0, 0) -= hv;
+    T(1, 1) -= hv;
+    T(2, 2) -= hv;
+    T(0, 1) -= h.a[2];
+    T(1, 0) += h.a[2];
+    T(0, 2) += h.a[1];
+    T(2, 0) -= h.a[1];
+    T(1, 2) -= h.a[0];
+    T(2, 1) += h.a[0];
+    return {T, 2 * h.l};
+  }
+};
+
+/// The passes' world in the plane normal to axis K of a planar scene
+/// (dynamics/algebra.hpp's planar_axis): motion and force in se(2), which
+/// the cross products close over. What it drops (offsets, first moments and
+/// gravity along K, the inertia's other entries) changes no q̈ and so none of
+/// its derivatives.
+template <int K>
+struct plane {
+  static constexpr int A = (K + 1) % 3, B = (K + 2) % 3;
+  using ang = double;
+  using lin = Vec2d;
+  using moment = double;  // a rotational inertia: its entry about K
+  static ang zero_ang() { return 0; }
+  static ang ang_of(const Vec3d& x) { return x[K]; }
+  static lin lin_of(const Vec3d& x) { return {x[A], x[B]}; }
+  /// A rotation about K as the 2 × 2 matrix of its in-plane block.
+  template <class E>
+  static Mat2d rotation_of(const E& e) {
+    const Vec3d c = rot(e, to_svec(Vec3d(Vec3d::Unit(A)))).dense();
+    Mat2d R;
+    R << c[A], -c[B], c[B], c[A];
+    return R;
+  }
+  FLANGE_INLINE static world_inertia<plane> to_world(const rigid_inertia<double>& b, const Mat2d& R, const Vec2d& r) {
+    const Vec2d Rh = R * lin_of(b.h);
+    return {b.m, Rh + b.m * r, b.I(K, K) + b.m * r.squaredNorm() + 2 * r.dot(Rh)};
+  }
+  FLANGE_INLINE static velocity_coupling<plane> coupling_of(const world_inertia<plane>& I, const spatial<plane>& v,
+                                                            const spatial<plane>& h) {
+    return {-2 * I.h.dot(v.l), 2 * h.l};
+  }
+};
+
+template <class S, int K = planar_axis<S>()>
+struct geometry_of {
+  using type = plane<K>;
+};
+template <class S>
+struct geometry_of<S, -1> {
+  using type = space;
+};
 
 /// Whether joint type J is one the analytic derivatives handle: one rate, its
 /// column fixed in its link, its force (if any) its own.
@@ -193,6 +275,14 @@ struct descendant_lists {
   }();
 };
 
+/// The rate of row r of acceleration_derivatives' result: link r + 1's.
+template <class S>
+inline constexpr auto derivative_row_rate = [] {
+  std::array<int, S::n_v> r{};
+  for (int L = 1; L < S::tree.n_links; ++L) r[L - 1] = S::tree.v_offset[S::tree.link_joint[L]];
+  return r;
+}();
+
 /// The matrix acceleration_derivatives fills: a row per rate, in link order.
 template <class S>
 using derivative_rows = Eigen::Matrix<double, S::n_v, 2 * S::n_v + 1, Eigen::RowMajor>;
@@ -209,55 +299,57 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
     for (int L = 0; L < NL; ++L) p[L] = S::tree.link_parent[L];
     return p;
   }();
-  constexpr auto rate = [] {
+  constexpr auto rate = [] {  // by link
     std::array<int, NL> r{};
-    for (int L = 1; L < NL; ++L) r[L] = S::tree.v_offset[S::tree.link_joint[L]];
+    for (int L = 1; L < NL; ++L) r[L] = derivative_row_rate<S>[L - 1];
     return r;
   }();
 
   // Each link's motion at q, densified: E (parent → link), p (its origin in
   // the parent's coordinates) and its column (link coordinates).
-  std::array<Mat3d, NL> E;
-  std::array<Vec3d, NL> p;
-  std::array<spatial, NL> col;
+  using G = typename geometry_of<S>::type;
+  using Rot = decltype(G::rotation_of(std::get<0>(link_motions<spatial_algebra, double, true>(scene, q)).E()));
+  std::array<Rot, NL> E;
+  std::array<typename G::lin, NL> p;
+  std::array<spatial<G>, NL> col;
   {
     const auto motions = link_motions<spatial_algebra, double, true>(scene, q);
     for_links<S>([&](auto l) {
       constexpr int L = decltype(l)::value;
       const auto& m = std::get<L - 1>(motions);
-      E[L] = dense_rotation(m.E());
-      p[L] = m.p.dense();
+      E[L] = G::rotation_of(m.E());
+      p[L] = G::lin_of(m.p.dense());
       const auto c = m.template col<0>();
-      col[L] = {c.ang.dense(), c.lin.dense()};
+      col[L] = {G::ang_of(c.ang.dense()), G::lin_of(c.lin.dense())};
     });
   }
 
   // Down the tree: poses, the columns, velocities and accelerations in the
   // world, each body's inertia, wrench and velocity coupling.
-  std::array<Mat3d, NL> R;
-  std::array<Vec3d, NL> r;
-  std::array<spatial, NL> s, vel, acc, u, psi, F;
-  std::array<world_inertia, NL> Ic;
-  std::array<velocity_coupling, NL> Bc;
+  std::array<Rot, NL> R;
+  std::array<typename G::lin, NL> r;
+  std::array<spatial<G>, NL> s, vel, acc, u, psi, F;
+  std::array<world_inertia<G>, NL> Ic;
+  std::array<velocity_coupling<G>, NL> Bc;
   R[0].setIdentity();
   r[0].setZero();
-  vel[0] = acc[0] = {Vec3d::Zero(), Vec3d::Zero()};
-  if constexpr (S::has_gravity) acc[0].l = scene.model().minus_g;
+  vel[0] = acc[0] = {G::zero_ang(), G::lin::Zero()};
+  if constexpr (S::has_gravity) acc[0].l = G::lin_of(scene.model().minus_g);
   for (int L = 1; L < NL; ++L) {
     const int P = parent[L];
     R[L] = R[P] * E[L].transpose();
     r[L] = r[P] + R[P] * p[L];
-    const Vec3d w = R[L] * col[L].a;
-    s[L] = {w, R[L] * col[L].l + cross3(r[L], w)};
+    const auto w = turn(R[L], col[L].a);
+    s[L] = {w, R[L] * col[L].l + cross(r[L], w)};
     const double qd = v[rate[L]], qdd = vdot[rate[L]];
     vel[L] = vel[P] + s[L] * qd;
     acc[L] = acc[P] + s[L] * qdd + motion_cross(vel[L], s[L]) * qd;
     u[L] = motion_cross(s[L], vel[P]);
     psi[L] = motion_cross(s[L], acc[P]) - motion_cross(u[L], vel[P]);
-    Ic[L] = to_world(scene.model().link[L], R[L], r[L]);
-    const spatial h = Ic[L] * vel[L];
+    Ic[L] = G::to_world(scene.model().link[L], R[L], r[L]);
+    const spatial<G> h = Ic[L] * vel[L];
     F[L] = Ic[L] * acc[L] + force_cross(vel[L], h);
-    Bc[L] = coupling_of(Ic[L], vel[L], h);
+    Bc[L] = G::coupling_of(Ic[L], vel[L], h);
   }
 
   // Up the tree: the composites, then the pairs of link L with its ancestors
@@ -273,19 +365,19 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
   if constexpr (!chain) out.setZero();
   for (int L = NL - 1; L >= 1; --L) {
     const int i = rate[L];
-    const spatial y = Ic[L] * s[L];
-    const Vec3d z = Bc[L].transposed_times(s[L]);
+    const spatial<G> y = Ic[L] * s[L];
+    const auto z = Bc[L].transposed_times(s[L]);
     for (int j = L; j != 0; j = parent[j]) {
       const int k = rate[j];
       M(L - 1, j - 1) = y.dot(s[j]);
-      out(L - 1, k) = y.dot(psi[j]) - z.dot(u[j].a);
-      out(L - 1, N + k) = z.dot(s[j].a) + 2 * y.dot(u[j]);
+      out(L - 1, k) = y.dot(psi[j]) - inner(z, u[j].a);
+      out(L - 1, N + k) = inner(z, s[j].a) + 2 * y.dot(u[j]);
     }
-    const spatial G = force_cross(s[L], F[L]) + Bc[L] * u[L] - Ic[L] * psi[L];
-    const spatial H = Bc[L] * s[L] + Ic[L] * u[L] * 2;
+    const spatial<G> Gq = force_cross(s[L], F[L]) + Bc[L] * u[L] - Ic[L] * psi[L];
+    const spatial<G> Gv = Bc[L] * s[L] + Ic[L] * u[L] * 2;
     for (int j = parent[L]; j != 0; j = parent[j]) {
-      out(j - 1, i) = -s[j].dot(G);
-      out(j - 1, N + i) = s[j].dot(H);
+      out(j - 1, i) = -s[j].dot(Gq);
+      out(j - 1, N + i) = s[j].dot(Gv);
     }
     if (const int P = parent[L]; P != 0) {
       Ic[P] += Ic[L];
@@ -385,13 +477,5 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
     solve(C - last, std::integral_constant<int, last>{});
   }
 }
-
-/// The rate of row r of acceleration_derivatives' result (links in order).
-template <class S>
-inline constexpr auto derivative_row_rate = [] {
-  std::array<int, S::n_v> r{};
-  for (int L = 1; L < S::tree.n_links; ++L) r[L - 1] = S::tree.v_offset[S::tree.link_joint[L]];
-  return r;
-}();
 
 }  // namespace flange::detail

@@ -422,6 +422,13 @@ template <class A, class B, class T, int M>
 FLANGE_INLINE auto rot_t(const rotation_product<A, B>& E, const svec<T, M>& v) {
   return rot_t(E.b, rot_t(E.a, v));
 }
+/// The 3 × 3 matrix of a typed rotation E (x_child = E·x_parent), in scalar T.
+template <class T, class E>
+Mat3<T> dense_rotation(const E& e) {
+  Mat3<T> R;
+  for (int k = 0; k < 3; ++k) R.col(k) = rot(e, to_svec(Vec3<T>(Vec3<T>::Unit(k)))).dense();
+  return R;
+}
 
 /// The rotation as a dense matrix.
 template <class T>

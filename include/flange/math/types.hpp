@@ -13,6 +13,8 @@ template <class T> using Row3 = Eigen::Matrix<T, 1, 3>;
 template <class T> using Mat3 = Eigen::Matrix<T, 3, 3>;
 using Vec3d = Vec3<double>;
 using Mat3d = Mat3<double>;
+using Vec2d = Eigen::Vector2d;
+using Mat2d = Eigen::Matrix2d;
 
 /// A fixed-size vector or matrix of zeros, written entry by entry and forced
 /// inline. Eigen's `M::Zero()` is an expression whose conversion to M GCC
