@@ -34,6 +34,15 @@ void agree(const S& scene, std::mt19937& rng, double t = 0.3) {
     CHECK((J - J_dual).cwiseAbs().maxCoeff() <= 1e-12 * scale);
     CHECK((ft - ft_dual).cwiseAbs().maxCoeff() <= 1e-12 * scale);
     CHECK(J.allFinite());
+    // v̇ from M's factor in the derivatives' own passes, against the
+    // scene's derivative (the articulated-body algorithm or M's LDLᵀ).
+    std::array<double, S::n_state> xs, f;
+    for (int i = 0; i < S::n_state; ++i) xs[i] = x[i];
+    scene(xs, f, t);
+    detail::derivative_rows<S> rows;
+    std::array<double, S::n_v> vdot;
+    REQUIRE(detail::acceleration_derivatives(scene, t, xs.data(), xs.data() + S::n_q, rows, vdot.data()).index < 0);
+    for (int i = 0; i < S::n_v; ++i) CHECK(std::abs(vdot[i] - f[S::n_q + i]) <= 1e-12 * std::max(1.0, std::abs(f[S::n_q + i])));
     // And central differences to their accuracy (h = ε^(1/3): about 1e-10
     // relative, so 1e-7 of the largest entry; jacobian_test.cpp's bar).
     Eigen::Matrix<double, S::n_state, 1> ft_fd;
@@ -148,4 +157,23 @@ TEST_CASE("a drive of time is differentiated in t, a drive of the state takes du
   static_assert(detail::force_reads_state<PD>());
   static_assert(!detail::force_reads_state<Revolute<"j0", axis::any, axis_law::none, decltype(tau)>>());
   static_assert(!detail::force_reads_state<Revolute<"j0">>());
+}
+
+TEST_CASE("a singular mass matrix stops the analytic Jacobian with the derivative's reason") {
+  // j1 turns a point mass about an axis through it: it moves nothing with
+  // inertia, and M's pivot for it is zero.
+  const auto s = scene(World<"world">{}, Revolute<"j0", axis::z>{}, FixedTranslation<"r0">({.d = Vec3d(0.5, 0, 0)}),
+                       Body<"b0">({.m = 1.0, .J = Vec3d(0.1, 0.1, 0.1).asDiagonal()}), Revolute<"j1", axis::z>{},
+                       Body<"b1">({.m = 1.0, .J = Mat3d::Zero()}), connect<"world.frame_b", "j0.frame_a">,
+                       connect<"j0.frame_b", "r0.frame_a">, connect<"r0.frame_b", "b0.frame_a">,
+                       connect<"r0.frame_b", "j1.frame_a">, connect<"j1.frame_b", "b1.frame_a">);
+  using S = std::remove_cvref_t<decltype(s)>;
+  STATIC_REQUIRE(detail::analytic_derivatives<S>());
+  const std::array<double, 4> x{0.3, -0.2, 0.5, 1.0};
+  std::array<double, 4> f;
+  REQUIRE_THROWS_WITH(s(x, f, 0.0), Catch::Contains("singular mass matrix") && Catch::Contains("\"j1\""));
+  REQUIRE_THROWS_WITH(jacobian(s, 0.0, x), Catch::Contains("singular mass matrix") && Catch::Contains("\"j1\""));
+  // A state that is not finite is named as such.
+  const std::array<double, 4> bad{0.3, std::nan(""), 0.5, 1.0};
+  REQUIRE_THROWS_WITH(jacobian(s, 0.0, bad), Catch::Contains("not finite"));
 }

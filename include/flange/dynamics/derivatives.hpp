@@ -42,6 +42,7 @@
 #include <Eigen/Core>
 
 #include "flange/dynamics/forward_dynamics.hpp"
+#include "flange/dynamics/ldlt.hpp"
 #include "flange/dynamics/links.hpp"
 #include "flange/math/dual.hpp"
 
@@ -287,11 +288,13 @@ inline constexpr auto derivative_row_rate = [] {
 template <class S>
 using derivative_rows = Eigen::Matrix<double, S::n_v, 2 * S::n_v + 1, Eigen::RowMajor>;
 
-/// ∂v̇/∂q, ∂v̇/∂v and ∂v̇/∂t at (t, q, v), given v̇ there, as the columns of
-/// out (columns in rate order; row r is rate derivative_row_rate<S>[r]).
+/// ∂v̇/∂q, ∂v̇/∂v and ∂v̇/∂t at (t, q, v) as the columns of out (columns in
+/// rate order; row r is rate derivative_row_rate<S>[r]), and v̇ itself into
+/// vdot when given. Returns the pivot of M that failed (index ≥ 0: out and
+/// vdot are not written; index is its rate), as the mass-matrix solve reports it.
 template <class S>
-void acceleration_derivatives(const S& scene, double t, const double* q, const double* v, const double* vdot,
-                              derivative_rows<S>& out) {
+pivot_report<double> acceleration_derivatives(const S& scene, double t, const double* q, const double* v,
+                                              derivative_rows<S>& out, double* vdot = nullptr) {
   static_assert(analytic_derivatives<S>() && S::n_q == S::n_v);
   constexpr int NL = S::tree.n_links, N = S::n_v;
   constexpr auto parent = [] {
@@ -324,8 +327,10 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
     });
   }
 
-  // Down the tree: poses, the columns, velocities and accelerations in the
-  // world, each body's inertia, wrench and velocity coupling.
+  // Down the tree: poses, the columns and velocities in the world, and the
+  // accelerations as they would be at v̇ = 0 (acc⁰; the true ones follow once
+  // v̇ is known, below); each body's inertia, its wrench at acc⁰ and its
+  // velocity coupling.
   std::array<Rot, NL> R;
   std::array<typename G::lin, NL> r;
   std::array<spatial<G>, NL> s, vel, acc, u, psi, F;
@@ -341,22 +346,25 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
     r[L] = r[P] + R[P] * p[L];
     const auto w = turn(R[L], col[L].a);
     s[L] = {w, R[L] * col[L].l + cross(r[L], w)};
-    const double qd = v[rate[L]], qdd = vdot[rate[L]];
+    const double qd = v[rate[L]];
     vel[L] = vel[P] + s[L] * qd;
-    acc[L] = acc[P] + s[L] * qdd + motion_cross(vel[L], s[L]) * qd;
     u[L] = motion_cross(s[L], vel[P]);
-    psi[L] = motion_cross(s[L], acc[P]) - motion_cross(u[L], vel[P]);
+    acc[L] = acc[P] - u[L] * qd;  // v_L × s_L = v_P × s_L
     Ic[L] = G::to_world(scene.model().link[L], R[L], r[L]);
     const spatial<G> h = Ic[L] * vel[L];
     F[L] = Ic[L] * acc[L] + force_cross(vel[L], h);
     Bc[L] = G::coupling_of(Ic[L], vel[L], h);
   }
 
-  // Up the tree: the composites, then the pairs of link L with its ancestors
-  // (M and the derivatives are zero between links on different branches).
-  // Rows in link order (parents first), so that M's factor keeps the tree's
-  // zeros; columns in rate order.
+  // Up the tree: the composites, M, the forces τ⁰ at v̇ = 0 and what does not
+  // depend on v̇ (∂/∂v) for each pair of link L and an ancestor (M and the
+  // derivatives are zero between links on different branches). Rows in link
+  // order (parents first), so that M's factor keeps the tree's zeros; columns
+  // in rate order.
   Eigen::Matrix<double, N, N> M;
+  Eigen::Matrix<double, N, 1> b;  // Q − τ⁰, then v̇, by link
+  std::array<spatial<G>, NL> y;   // I_L·s_L
+  std::array<typename G::ang, NL> z;  // the angular part of B_Lᵀ·s_L
   constexpr bool chain = [] {
     for (int L = 1; L < NL; ++L)
       if (S::tree.link_parent[L] != L - 1) return false;
@@ -365,28 +373,25 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
   if constexpr (!chain) out.setZero();
   for (int L = NL - 1; L >= 1; --L) {
     const int i = rate[L];
-    const spatial<G> y = Ic[L] * s[L];
-    const auto z = Bc[L].transposed_times(s[L]);
+    y[L] = Ic[L] * s[L];
+    z[L] = Bc[L].transposed_times(s[L]);
+    b[L - 1] = -s[L].dot(F[L]);
     for (int j = L; j != 0; j = parent[j]) {
       const int k = rate[j];
-      M(L - 1, j - 1) = y.dot(s[j]);
-      out(L - 1, k) = y.dot(psi[j]) - inner(z, u[j].a);
-      out(L - 1, N + k) = inner(z, s[j].a) + 2 * y.dot(u[j]);
+      M(L - 1, j - 1) = y[L].dot(s[j]);
+      out(L - 1, N + k) = inner(z[L], s[j].a) + 2 * y[L].dot(u[j]);
     }
-    const spatial<G> Gq = force_cross(s[L], F[L]) + Bc[L] * u[L] - Ic[L] * psi[L];
     const spatial<G> Gv = Bc[L] * s[L] + Ic[L] * u[L] * 2;
-    for (int j = parent[L]; j != 0; j = parent[j]) {
-      out(j - 1, i) = -s[j].dot(Gq);
-      out(j - 1, N + i) = s[j].dot(Gv);
-    }
+    for (int j = parent[L]; j != 0; j = parent[j]) out(j - 1, N + i) = s[j].dot(Gv);
     if (const int P = parent[L]; P != 0) {
       Ic[P] += Ic[L];
       Bc[P] += Bc[L];
       F[P] += F[L];
     }
   }
-  out.col(2 * N).setZero();
-  // The joints' own forces, each in its own q, v and the time.
+  // The joints' own forces Q, each by dual numbers in its own q, v and the
+  // time: their values into b, their derivatives kept for below.
+  std::array<std::array<double, 3>, NL> dQ{};
   if constexpr (has_joint_forces<S>()) {
     using D = dual<double, 3>;
     std::array<D, S::n_q> qx;
@@ -403,21 +408,26 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
         vx[LI::v] = D::variable(v[LI::v], 1);
         D tau;
         scene.template component<LI::joint>().generalized_force(td, x, qx.data() + LI::q, vx.data() + LI::v, &tau);
-        out(L - 1, LI::v) += tau.d[0];
-        out(L - 1, N + LI::v) += tau.d[1];
-        out(L - 1, 2 * N) += tau.d[2];
+        b[L - 1] += tau.v;
+        dQ[L] = {tau.d[0], tau.d[1], tau.d[2]};
         qx[LI::q] = D(q[LI::q]);
         vx[LI::v] = D(v[LI::v]);
       }
     });
   }
+
   // M = Cᵀ·C (Featherstone's LTL factorization, leaves first: C has the
-  // tree's zeros, where a root-first factor would join siblings), then
-  // Cᵀ·C·X = out row by row, each step a row operation over 2N + 1 columns.
+  // tree's zeros, where a root-first factor would join siblings). A pivot at
+  // or below pivot_tolerance of its diagonal entry stops it (a joint that
+  // moves nothing with inertia, or whose motion repeats others').
+  constexpr double tol = pivot_tolerance<N, double>();
   if constexpr (chain) {
     // Every link above k: dense loops the compiler vectorizes.
-    std::array<double, N> c;
+    std::array<double, N> c, diag;
+    for (int k = 0; k < N; ++k) diag[k] = M(k, k);
     for (int k = N - 1; k >= 0; --k) {
+      if (!(M(k, k) > tol * diag[k])) [[unlikely]]
+        return {rate[k + 1], M(k, k), diag[k]};
       const double d = std::sqrt(M(k, k)), e = 1 / d;
       M(k, k) = d;
       for (int i = 0; i < k; ++i) c[i] = M(k, i) = M(k, i) * e;
@@ -425,7 +435,11 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
         for (int i = j; i < k; ++i) M(i, j) -= c[i] * c[j];
     }
   } else {
+    std::array<double, N> diag;
+    for (int k = 0; k < N; ++k) diag[k] = M(k, k);
     for (int k = NL - 1; k >= 1; --k) {
+      if (!(M(k - 1, k - 1) > tol * diag[k - 1])) [[unlikely]]
+        return {rate[k], M(k - 1, k - 1), diag[k - 1]};
       const double d = std::sqrt(M(k - 1, k - 1));
       M(k - 1, k - 1) = d;
       for (int i = parent[k]; i != 0; i = parent[i]) M(k - 1, i - 1) /= d;
@@ -440,9 +454,9 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
   using below = descendant_lists<S>;
   std::array<double, NL> inv;
   for (int k = 1; k < NL; ++k) inv[k] = 1 / M(k - 1, k - 1);
-  auto solve = [&]<int W>(int c0, std::integral_constant<int, W>) {
+  auto solve = [&]<int W>(auto& X, int c0, std::integral_constant<int, W>) {
     using Row = Eigen::Matrix<double, 1, W>;
-    auto row = [&](int k) { return out.row(k - 1).template segment<W>(c0); };
+    auto row = [&](int k) { return X.row(k - 1).template segment<W>(c0); };
     // Two sums in turn, so that each waits on its own last product only.
     for (int k = NL - 1; k >= 1; --k) {
       Row acc = row(k), acc2 = Row::Zero();
@@ -466,16 +480,45 @@ void acceleration_derivatives(const S& scene, double t, const double* q, const d
       row(k) = (acc + acc2) * inv[k];
     }
   };
+  // v̇ = M⁻¹·(Q − τ⁰); then each link's acceleration changes by δa_L = δa_P +
+  // s_L·v̇_L, and ψ_L = s_L × a_P − u_L × v_P follows.
+  solve(b, 0, std::integral_constant<int, 1>{});
+  if (vdot)
+    for (int L = 1; L < NL; ++L) vdot[rate[L]] = b[L - 1];
+  std::array<spatial<G>, NL> da;
+  da[0] = {G::zero_ang(), G::lin::Zero()};
+  for (int L = 1; L < NL; ++L) {
+    const int P = parent[L];
+    da[L] = da[P] + s[L] * b[L - 1];
+    psi[L] = motion_cross(s[L], acc[P] + da[P]) - motion_cross(u[L], vel[P]);
+  }
+  // Up the tree again: the subtree's wrench at v̇, F_L = F⁰_L + I_L·δa_L + Y_L
+  // with Y_L = Σ over L's children c of (I_c·s_c·v̇_c + Y_c), and the pairs'
+  // ∂/∂q; then the joints' own.
+  std::array<spatial<G>, NL> Y;
+  for (int L = 0; L < NL; ++L) Y[L] = {G::zero_ang(), G::lin::Zero()};
+  for (int L = NL - 1; L >= 1; --L) {
+    const int i = rate[L];
+    F[L] += Ic[L] * da[L] + Y[L];
+    for (int j = L; j != 0; j = parent[j]) out(L - 1, rate[j]) = y[L].dot(psi[j]) - inner(z[L], u[j].a);
+    const spatial<G> Gq = force_cross(s[L], F[L]) + Bc[L] * u[L] - Ic[L] * psi[L];
+    for (int j = parent[L]; j != 0; j = parent[j]) out(j - 1, i) = -s[j].dot(Gq);
+    Y[parent[L]] += y[L] * b[L - 1] + Y[L];
+    out(L - 1, i) += dQ[L][0];
+    out(L - 1, N + i) += dQ[L][1];
+    out(L - 1, 2 * N) = dQ[L][2];
+  }
   // One block up to 40 columns; else blocks of 16, the last one taking the
   // remainder (16 to 31 columns), so that no block is a narrow tail.
   constexpr int C = 2 * N + 1;
   if constexpr (C <= 40) {
-    solve(0, std::integral_constant<int, C>{});
+    solve(out, 0, std::integral_constant<int, C>{});
   } else {
     constexpr int last = 16 + C % 16;
-    for (int c0 = 0; c0 + last < C; c0 += 16) solve(c0, std::integral_constant<int, 16>{});
-    solve(C - last, std::integral_constant<int, last>{});
+    for (int c0 = 0; c0 + last < C; c0 += 16) solve(out, c0, std::integral_constant<int, 16>{});
+    solve(out, C - last, std::integral_constant<int, last>{});
   }
+  return {};
 }
 
 }  // namespace flange::detail

@@ -73,11 +73,16 @@ jacobian_matrix<S> jacobian(const S& scene, double t, const State& x, Eigen::Mat
   if constexpr (detail::analytic_derivatives<S>()) {
     S::require_state_size(x);
     constexpr int nq = S::n_q, nv = S::n_v;
-    std::array<double, S::n_state> xs, f;
+    std::array<double, S::n_state> xs;
     for (int i = 0; i < S::n_state; ++i) xs[i] = x[i];
-    scene(xs, f, t);
     detail::derivative_rows<S> d;
-    detail::acceleration_derivatives(scene, t, xs.data(), xs.data() + nq, f.data() + nq, d);
+    if (const auto p = detail::acceleration_derivatives(scene, t, xs.data(), xs.data() + nq, d); p.index >= 0) {
+      // M is singular here: the derivative says why (a state that is not
+      // finite, or the joint whose pivot failed), in the scene's own words.
+      std::array<double, S::n_state> f;
+      scene(xs, f, t);
+      detail::singular_mass_matrix<S>(p, t, xs.data(), xs.data() + nq);
+    }
     jacobian_matrix<S> J;
     J.template topRows<nq>().setZero();
     for (int i = 0; i < nv; ++i) J(i, nq + i) = 1;  // q̇ = v: one-axis joints
