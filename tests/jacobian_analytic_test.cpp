@@ -52,6 +52,12 @@ void agree(const S& scene, std::mt19937& rng, double t = 0.3) {
   }
 }
 
+/// A PD law on the joint named Name, about its zero.
+template <fixed_string Name>
+auto pd_of(double kp, double kd) {
+  return [kp, kd](auto, const auto& x) { return -kp * q<Name>(x) - kd * v<Name>(x); };
+}
+
 /// A random tree of one-axis joints (Revolute, Prismatic: typed and run-time
 /// axes, axis laws, offsets, joints connected either way round, every body
 /// kind) without force elements.
@@ -138,7 +144,7 @@ TEST_CASE("a planar scene's Jacobian in the plane's arithmetic equals the dual n
   agree(x, rng);
 }
 
-TEST_CASE("a drive of time is differentiated in t, a drive of the state takes dual numbers") {
+TEST_CASE("drives of time and of the state are differentiated: in t, and in every direction of the state") {
   std::mt19937 rng(7);
   auto tau = [](auto t) {
     using std::sin;
@@ -153,6 +159,31 @@ TEST_CASE("a drive of time is differentiated in t, a drive of the state takes du
                          connect<"j1.frame_b", "r1.frame_a">, connect<"r1.frame_b", "b1.frame_a">);
   agree(arm, rng, 0.9);
   auto pd = [](auto t, const auto& x) { return -4.0 * q<"j0">(x) - 0.5 * v<"j0">(x) + 0 * t; };
+  // A PD law on j1 that also reads j0 and the time, and j0's drive of time.
+  auto coupled = [](auto t, const auto& x) {
+    using std::cos;
+    return -6.0 * (q<"j1">(x) - 0.3 * q<"j0">(x)) - 0.8 * v<"j1">(x) + 0.2 * v<"j0">(x) * cos(t);
+  };
+  const auto driven = scene(World<"world">{}, revolute<"j0">(tau, Vec3d(0, 0.6, 0.8)),
+                            FixedTranslation<"r0">({.d = Vec3d(0.5, 0, 0.1)}),
+                            Body<"b0">({.m = 1.3, .J = Vec3d(0.02, 0.03, 0.04).asDiagonal()}),
+                            revolute<"j1", axis::x>(coupled), FixedTranslation<"r1">({.d = Vec3d(0.4, 0.1, 0)}),
+                            Body<"b1">({.m = 0.8, .J = Vec3d(0.01, 0.02, 0.03).asDiagonal()}),
+                            connect<"world.frame_b", "j0.frame_a">, connect<"j0.frame_b", "r0.frame_a">,
+                            connect<"r0.frame_b", "b0.frame_a">, connect<"r0.frame_b", "j1.frame_a">,
+                            connect<"j1.frame_b", "r1.frame_a">, connect<"r1.frame_b", "b1.frame_a">);
+  agree(driven, rng, 0.9);
+  // The paper-style spatial arm of the tutorial: a PD law on every joint.
+  agree(scene(World<"world">({.g = {0, 0, -9.81}}), revolute<"shoulder", axis::z>(pd_of<"shoulder">(60, 12)),
+              revolute<"elbow", axis::y>(pd_of<"elbow">(150, 20)), revolute<"wrist", axis::y>(pd_of<"wrist">(20, 2)),
+              FixedTranslation<"upper">({.d = Vec3d(0.5, 0, 0)}), Body<"b1">({.m = 2.0, .J = Vec3d(0.01, 0.05, 0.05).asDiagonal()}),
+              FixedTranslation<"fore">({.d = Vec3d(0.4, 0, 0)}), Body<"b2">({.m = 0.8, .J = Vec3d(0.005, 0.02, 0.02).asDiagonal()}),
+              Body<"b3">({.m = 0.2, .J = Vec3d(0.001, 0.002, 0.002).asDiagonal()}),
+              connect<"world.frame_b", "shoulder.frame_a">, connect<"shoulder.frame_b", "upper.frame_a">,
+              connect<"upper.frame_b", "b1.frame_a">, connect<"upper.frame_b", "elbow.frame_a">,
+              connect<"elbow.frame_b", "fore.frame_a">, connect<"fore.frame_b", "b2.frame_a">,
+              connect<"fore.frame_b", "wrist.frame_a">, connect<"wrist.frame_b", "b3.frame_a">),
+        rng);
   using PD = Revolute<"j0", axis::any, axis_law::none, decltype(pd)>;
   static_assert(detail::force_reads_state<PD>());
   static_assert(!detail::force_reads_state<Revolute<"j0", axis::any, axis_law::none, decltype(tau)>>());

@@ -22,17 +22,19 @@
 // planar_axis) the plane normal to its axis K, where a motion is ω along K
 // and an in-plane velocity, an inertia is m, an in-plane first moment and
 // I_KK, and B is T_KK and an in-plane k: a tenth of the arithmetic, and what
-// it drops changes no q̈. A joint's own force Q
-// (an axis law, a drive of time) is differentiated by dual numbers in its own
-// q, v and t. One forward pass over the links, one backward pass that fills
+// it drops changes no q̈. A joint's own force Q is differentiated by dual
+// numbers: an axis law or a drive of time in its own q, v and t, a drive that
+// reads the state (τ(t, x), a PD law) in every direction. v̇ itself comes
+// from the same passes: τ⁰ at v̇ = 0, v̇ = M⁻¹·(Q − τ⁰), then the
+// accelerations corrected. One forward pass over the links, one backward pass that fills
 // the pairs of a link and its ancestors (O(N²) on a chain), and one Cholesky
 // solve of M with 2N + 1 right-hand sides (O(N³) on a chain).
 //
 // Which scenes take it (analytic_derivatives<S>): a tree (no loop, nothing
 // floating) of joints of one rate whose column is fixed in their link
-// (Revolute, Prismatic, either way round, axes typed or given at run time),
-// no force elements, and no joint force reading other joints' states (a drive
-// τ(t, x)). simulate/jacobian.hpp takes dual numbers for every other scene.
+// (Revolute, Prismatic, either way round, axes typed or given at run time,
+// any drive), and no force elements. simulate/jacobian.hpp takes dual
+// numbers for every other scene.
 #pragma once
 #include <array>
 #include <cmath>
@@ -227,11 +229,11 @@ struct geometry_of<S, -1> {
   using type = space;
 };
 
-/// Whether joint type J is one the analytic derivatives handle: one rate, its
-/// column fixed in its link, its force (if any) its own.
+/// Whether joint type J is one the analytic derivatives handle: one rate and
+/// its column fixed in its link.
 template <class J>
 constexpr bool one_axis_joint() {
-  return J::nq == 1 && J::nv == 1 && fixed_subspace<J> && !force_reads_state<J>();
+  return J::nq == 1 && J::nv == 1 && fixed_subspace<J>;
 }
 
 /// Whether the scene's ∂v̇/∂x comes from analytic_derivatives (above).
@@ -283,6 +285,27 @@ inline constexpr auto derivative_row_rate = [] {
   for (int L = 1; L < S::tree.n_links; ++L) r[L - 1] = S::tree.v_offset[S::tree.link_joint[L]];
   return r;
 }();
+
+/// The links whose joint's force reads the state (a drive τ(t, x)), in link
+/// order: link[0 … count − 1].
+template <class S>
+struct state_reading_links {
+  static constexpr int NL = S::tree.n_links;
+  static constexpr auto table = [] {
+    std::pair<std::array<int, NL>, int> r{};
+    [&]<int... L>(std::integer_sequence<int, L...>) {
+      ((force_reads_state<typename link_info<S, L + 1>::joint_type>() ? (r.first[r.second++] = L + 1, 0) : 0), ...);
+    }(std::make_integer_sequence<int, NL - 1>{});
+    return r;
+  }();
+  static constexpr int count = table.second;
+  static constexpr const std::array<int, NL>& link = table.first;
+  static constexpr int index_of(int L) {
+    int k = 0;
+    while (table.first[k] != L) ++k;
+    return k;
+  }
+};
 
 /// The matrix acceleration_derivatives fills: a row per rate, in link order.
 template <class S>
@@ -389,9 +412,15 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
       F[P] += F[L];
     }
   }
-  // The joints' own forces Q, each by dual numbers in its own q, v and the
-  // time: their values into b, their derivatives kept for below.
+  // The joints' own forces Q by dual numbers: their values into b, their
+  // derivatives kept for below. A force of the joint's own q, v and the time
+  // (an axis law, a drive of t) in those three directions; a drive that reads
+  // the state (τ(t, x)) in every direction of the state and the time, its
+  // row of ∂Q/∂x dense.
   std::array<std::array<double, 3>, NL> dQ{};
+  using reading = state_reading_links<S>;
+  using DW = dual<double, 2 * N + 1>;
+  std::array<DW, reading::count> dQ_read;
   if constexpr (has_joint_forces<S>()) {
     using D = dual<double, 3>;
     std::array<D, S::n_q> qx;
@@ -400,10 +429,24 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
     for (int k = 0; k < N; ++k) vx[k] = D(v[k]);
     const auto x = state_view(scene, qx.data(), vx.data());
     const D td = D::variable(t, 2);
+    std::array<DW, reading::count == 0 ? 0 : S::n_q> qw;
+    std::array<DW, reading::count == 0 ? 0 : N> vw;
+    if constexpr (reading::count > 0) {
+      for (int k = 0; k < S::n_q; ++k) qw[k] = DW::variable(q[k], k);  // q_k's column is its rate's: nq = nv
+      for (int k = 0; k < N; ++k) vw[k] = DW::variable(v[k], N + k);
+    }
     for_links<S>([&](auto l) {
       constexpr int L = decltype(l)::value;
       using LI = link_info<S, L>;
-      if constexpr (has_generalized_force<typename LI::joint_type>) {
+      using J = typename LI::joint_type;
+      if constexpr (force_reads_state<J>()) {
+        constexpr int n = reading::index_of(L);
+        const auto xw = state_view(scene, qw.data(), vw.data());
+        DW& tau = dQ_read[n];
+        scene.template component<LI::joint>().generalized_force(DW::variable(t, 2 * N), xw, qw.data() + LI::q,
+                                                                 vw.data() + LI::v, &tau);
+        b[L - 1] += tau.v;
+      } else if constexpr (has_generalized_force<J>) {
         qx[LI::q] = D::variable(q[LI::q], 0);
         vx[LI::v] = D::variable(v[LI::v], 1);
         D tau;
@@ -508,6 +551,8 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
     out(L - 1, N + i) += dQ[L][1];
     out(L - 1, 2 * N) = dQ[L][2];
   }
+  for (int n = 0; n < reading::count; ++n)
+    for (int c = 0; c <= 2 * N; ++c) out(reading::link[n] - 1, c) += dQ_read[n].d[c];
   // One block up to 40 columns; else blocks of 16, the last one taking the
   // remainder (16 to 31 columns), so that no block is a narrow tail.
   constexpr int C = 2 * N + 1;
