@@ -1,0 +1,76 @@
+// The Jacobian benchmark's measurement (jacobian.cpp lists the scenes): the
+// derivative, jacobian() and, in the full build, jacobian_dual() timed in
+// turns in one process, medians of 15 rounds, one line per scene:
+//
+//   jacobian <scene> N=<n> derivative_ns=<x> jacobian_ns=<y> ratio=<y/x> [dual_ns=<z>] path=<analytic|dual>
+#pragma once
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+#include <flange/simulate/jacobian.hpp>
+
+#include "../rounds.hpp"
+
+namespace jacobian_bench {
+
+/// Scenes whose jacobian() and jacobian_dual() differ beyond round-off.
+inline int failures = 0;
+
+/// Times scene S at state x; WithDual adds jacobian_dual()'s figure (and
+/// first checks that jacobian() equals it to 1e-12 of the largest entry).
+template <bool WithDual, class S, class State>
+void measure(const char* name, int n, const S& s, State x) {
+  constexpr bool analytic = flange::detail::analytic_derivatives<S>();
+  if constexpr (WithDual && analytic) {
+    const auto J = flange::jacobian(s, 0.0, x), Jd = flange::jacobian_dual(s, 0.0, x);
+    if ((J - Jd).cwiseAbs().maxCoeff() > 1e-12 * std::max(1.0, Jd.cwiseAbs().maxCoeff())) {
+      std::printf("jacobian %s N=%d differs from the dual-number Jacobian\n", name, n);
+      ++failures;
+    }
+  }
+  typename S::state_type f;
+  double sink = 0;
+  // Each call sees a new state (q[0] moves by ±1e-12 in turn), so nothing is
+  // hoisted, and a loop scene's state stays on its loop to round-off.
+  double step = 1e-12;
+  auto nudge = [&] {
+    x[0] += step;
+    step = -step;
+  };
+  auto derivative = [&] {
+    s(x, f, 0.0);
+    sink += f[S::n_state - 1];
+    nudge();
+  };
+  auto fast = [&] {
+    sink += flange::jacobian(s, 0.0, x)(S::n_state - 1, 0);
+    nudge();
+  };
+  auto dual = [&] {
+    if constexpr (WithDual) sink += flange::jacobian_dual(s, 0.0, x)(S::n_state - 1, 0);
+    nudge();
+  };
+  const long nd = rounds::calls_for(derivative), nj = rounds::calls_for(fast),
+             nu = WithDual ? rounds::calls_for(dual) : 1;
+  std::vector<double> td, tj, tu;
+  for (int r = 0; r < 15; ++r) {
+    td.push_back(rounds::block_ns(derivative, nd));
+    tj.push_back(rounds::block_ns(fast, nj));
+    if (WithDual) tu.push_back(rounds::block_ns(dual, nu));
+  }
+  const double d = rounds::median(td), j = rounds::median(tj);
+  const char* path = analytic ? "analytic" : "dual";
+  if (WithDual)
+    std::printf("jacobian %s N=%d derivative_ns=%.1f jacobian_ns=%.1f ratio=%.2f dual_ns=%.1f path=%s\n", name, n, d, j,
+                j / d, rounds::median(tu), path);
+  else
+    std::printf("jacobian %s N=%d derivative_ns=%.1f jacobian_ns=%.1f ratio=%.2f path=%s\n", name, n, d, j, j / d, path);
+  std::fflush(stdout);
+  if (sink == 0.123) std::printf("\n");
+}
+
+void chains();
+void named_scenes();
+
+}  // namespace jacobian_bench
