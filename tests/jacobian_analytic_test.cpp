@@ -113,7 +113,7 @@ TEST_CASE("a planar scene's Jacobian in the plane's arithmetic equals the dual n
     auto p = test::chain_params<5>(rng);
     p.g = Vec3d(test::uniform(rng, -5, 5), -9.81, test::uniform(rng, -5, 5));
     const auto c = models::chain<5, models::planar_axes>(p);
-    STATIC_REQUIRE(std::is_same_v<detail::geometry_of<std::remove_cvref_t<decltype(c)>>::type, detail::plane<2>>);
+    STATIC_REQUIRE(std::is_same_v<detail::geometry_t<std::remove_cvref_t<decltype(c)>>, detail::plane<2>>);
     agree(c, rng);
   }
   const Vec3d off(0.3, -0.4, 0.7);
@@ -127,7 +127,7 @@ TEST_CASE("a planar scene's Jacobian in the plane's arithmetic equals the dual n
       connect<"rail.frame_b", "arm.frame_a">, connect<"arm.frame_b", "pivot.frame_b">,
       connect<"pivot.frame_a", "rope.frame_a">, connect<"rope.frame_b", "load.frame_a">,
       connect<"rope.frame_b", "slide.frame_a">, connect<"slide.frame_b", "tip.frame_a">);
-  STATIC_REQUIRE(std::is_same_v<detail::geometry_of<std::remove_cvref_t<decltype(z)>>::type, detail::plane<2>>);
+  STATIC_REQUIRE(std::is_same_v<detail::geometry_t<std::remove_cvref_t<decltype(z)>>, detail::plane<2>>);
   agree(z, rng);
   const auto x = scene(
       World<"world">({.g = {-3.0, -9.81, 1.0}}), Revolute<"shoulder", axis::x>{},
@@ -140,7 +140,7 @@ TEST_CASE("a planar scene's Jacobian in the plane's arithmetic equals the dual n
       connect<"upper.frame_b", "reach.frame_a">, connect<"reach.frame_b", "b2.frame_a">,
       connect<"b2.frame_a", "wrist.frame_b">,  // reversed
       connect<"wrist.frame_a", "hand.frame_a">, connect<"hand.frame_b", "b3.frame_a">);
-  STATIC_REQUIRE(std::is_same_v<detail::geometry_of<std::remove_cvref_t<decltype(x)>>::type, detail::plane<0>>);
+  STATIC_REQUIRE(std::is_same_v<detail::geometry_t<std::remove_cvref_t<decltype(x)>>, detail::plane<0>>);
   agree(x, rng);
 }
 

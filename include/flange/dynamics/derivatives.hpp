@@ -220,14 +220,10 @@ struct plane {
   }
 };
 
-template <class S, int K = planar_axis<S>()>
-struct geometry_of {
-  using type = plane<K>;
-};
+/// The geometry a scene's passes run in: its plane if it is planar, else space.
 template <class S>
-struct geometry_of<S, -1> {
-  using type = space;
-};
+using geometry_t =
+    std::conditional_t<(planar_axis<S>() >= 0), plane<(planar_axis<S>() >= 0 ? planar_axis<S>() : 2)>, space>;
 
 /// Whether joint type J is one the analytic derivatives handle: one rate and
 /// its column fixed in its link.
@@ -333,7 +329,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
 
   // Each link's motion at q, densified: E (parent → link), p (its origin in
   // the parent's coordinates) and its column (link coordinates).
-  using G = typename geometry_of<S>::type;
+  using G = geometry_t<S>;
   using Rot = decltype(G::rotation_of(std::get<0>(link_motions<spatial_algebra, double, true>(scene, q)).E()));
   std::array<Rot, NL> E;
   std::array<typename G::lin, NL> p;
