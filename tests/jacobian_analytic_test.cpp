@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <flange/models/chain.hpp>
+#include <flange/models/paper.hpp>
 #include <flange/models/tree.hpp>
 #include <flange/simulate/jacobian.hpp>
 
@@ -102,6 +103,23 @@ TEST_CASE("the analytic Jacobian equals the dual-number Jacobian on random trees
   check.operator()<9, 8, true>();
   check.operator()<17, 12, false>();
   check.operator()<23, 6, false>();
+}
+
+TEST_CASE("force elements: the analytic Jacobian equals the dual-number Jacobian") {
+  // Random trees with every force element of models/tree.hpp (torques
+  // between links, line forces, loads from the World), spatial and planar,
+  // and the paper's robot arm (a Torque from the World).
+  std::mt19937 rng(4850);
+  auto check = [&]<unsigned Seed, int N, bool Planar>() {
+    constexpr auto shape = models::random_tree_shape(Seed, N, Planar);
+    INFO("tree seed " << Seed << ", " << N << " joints" << (Planar ? ", planar" : ""));
+    agree(models::tree<shape>(test::tree_params<shape.n>(rng)), rng);
+  };
+  check.operator()<5, 8, false>();
+  check.operator()<9, 8, true>();
+  check.operator()<31, 6, false>();
+  agree(models::robot_arm({}, Vec3d(0.1, -0.2, 0.3)), rng);
+  agree(models::robot_arm({}, [](auto t) { return Vec3<decltype(t)>(0.0 * t, 0.0 * t, 0.5 * t); }), rng);
 }
 
 TEST_CASE("a planar scene's Jacobian in the plane's arithmetic equals the dual numbers in 3-D") {

@@ -1,7 +1,7 @@
 // The Jacobian benchmark's named scenes (jacobian.hpp): the paper's robot arm
-// (its motor a Torque element: dual numbers) and gantry crane, a four-bar (a
-// loop: dual numbers), the tutorial's spatial arm (a PD law on each joint)
-// and, where flange-urdf is built, the same arm read from its URDF file.
+// (its motor a Torque element) and gantry crane, a four-bar (a loop: dual
+// numbers), the tutorial's spatial arm (a PD law on each joint) and, where
+// flange-urdf is built, the same arm read from its URDF file.
 #include <flange/models/linkages.hpp>
 #include <flange/models/paper.hpp>
 

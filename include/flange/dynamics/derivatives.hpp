@@ -30,10 +30,16 @@
 // the pairs of a link and its ancestors (O(N²) on a chain), and one Cholesky
 // solve of M with 2N + 1 right-hand sides (O(N³) on a chain).
 //
+// The force elements' loads (torques, springs, dampers, world forces,
+// contacts) are computed once by their own code in dual numbers in every
+// direction, turned into wrenches W_L at the world origin; they enter τ_i as
+// −s_iᵀ·Σ W over i's subtree, whose derivative adds s_iᵀ·∂W/∂x and, for q_j
+// above i, the turn of s_i: −(s_j × s_i)ᵀ·Σ W.
+//
 // Which scenes take it (analytic_derivatives<S>): a tree (no loop, nothing
 // floating) of joints of one rate whose column is fixed in their link
 // (Revolute, Prismatic, either way round, axes typed or given at run time,
-// any drive), and no force elements. simulate/jacobian.hpp takes dual
+// any drive), with any force elements. simulate/jacobian.hpp takes dual
 // numbers for every other scene.
 #pragma once
 #include <array>
@@ -43,6 +49,7 @@
 
 #include <Eigen/Core>
 
+#include "flange/dynamics/external.hpp"
 #include "flange/dynamics/forward_dynamics.hpp"
 #include "flange/dynamics/ldlt.hpp"
 #include "flange/dynamics/links.hpp"
@@ -238,9 +245,6 @@ constexpr bool analytic_derivatives() {
   if constexpr (!walkable<S> || S::tree.n_cuts > 0 || S::tree.n_links < 2) {
     return false;
   } else {
-    constexpr auto loads = load_flags<S>::value;
-    for (int L = 0; L < S::tree.n_links; ++L)
-      if (loads.torque[L] || loads.force[L]) return false;
     return []<int... L>(std::integer_sequence<int, L...>) {
       return (one_axis_joint<typename link_info<S, L + 1>::joint_type>() && ...);
     }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
@@ -302,6 +306,21 @@ struct state_reading_links {
     return k;
   }
 };
+
+/// A vector of dual numbers' values (c = −1) or their derivatives in direction c.
+template <int K>
+FLANGE_INLINE Vec3d lane(const Vec3<dual<double, K>>& x, int c) {
+  if (c < 0) return {x[0].v, x[1].v, x[2].v};
+  return {x[0].d[c], x[1].d[c], x[2].d[c]};
+}
+
+/// A load on a link (torque n about its origin and force f, link
+/// coordinates) as a wrench at the world origin, the link at (R, r).
+template <class G, class Rot, class Lin>
+FLANGE_INLINE spatial<G> world_wrench(const Rot& R, const Lin& r, const Vec3d& n, const Vec3d& f) {
+  const typename G::lin Rf = R * G::lin_of(f);
+  return {turn(R, G::ang_of(n)) + cross(r, Rf), Rf};
+}
 
 /// The matrix acceleration_derivatives fills: a row per rate, in link order.
 template <class S>
@@ -416,6 +435,21 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   std::array<std::array<double, 3>, NL> dQ{};
   using reading = state_reading_links<S>;
   using DW = dual<double, 2 * N + 1>;
+  constexpr auto loads = load_flags<S>::value;
+  constexpr bool loaded = [] {
+    for (int L = 1; L < NL; ++L)
+      if (load_flags<S>::value.torque[L]) return true;
+    return false;
+  }();
+  // The state and the time in every direction, for the drives that read the
+  // state and the force elements.
+  constexpr bool wide = reading::count > 0 || loaded;
+  std::array<DW, wide ? S::n_q : 0> qw;
+  std::array<DW, wide ? N : 0> vw;
+  if constexpr (wide) {
+    for (int k = 0; k < S::n_q; ++k) qw[k] = DW::variable(q[k], k);  // q_k's column is its rate's: nq = nv
+    for (int k = 0; k < N; ++k) vw[k] = DW::variable(v[k], N + k);
+  }
   std::array<DW, reading::count> dQ_read;
   if constexpr (has_joint_forces<S>()) {
     using D = dual<double, 3>;
@@ -425,12 +459,6 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
     for (int k = 0; k < N; ++k) vx[k] = D(v[k]);
     const auto x = state_view(scene, qx.data(), vx.data());
     const D td = D::variable(t, 2);
-    std::array<DW, reading::count == 0 ? 0 : S::n_q> qw;
-    std::array<DW, reading::count == 0 ? 0 : N> vw;
-    if constexpr (reading::count > 0) {
-      for (int k = 0; k < S::n_q; ++k) qw[k] = DW::variable(q[k], k);  // q_k's column is its rate's: nq = nv
-      for (int k = 0; k < N; ++k) vw[k] = DW::variable(v[k], N + k);
-    }
     for_links<S>([&](auto l) {
       constexpr int L = decltype(l)::value;
       using LI = link_info<S, L>;
@@ -453,6 +481,28 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
         vx[LI::v] = D(v[LI::v]);
       }
     });
+  }
+
+  // The force elements' loads on each link by dual numbers in every
+  // direction (force elements are written once, generic in their scalar):
+  // n about the link's origin and f, link coordinates. As a wrench W_L at the
+  // world origin they enter τ_i as −s_iᵀ·Σ_{L in i's subtree} W_L: into b
+  // here; their derivatives after the passes, below.
+  std::conditional_t<loaded, link_loads<S, DW>, std::array<int, 0>> n_w, f_w;
+  std::array<spatial<G>, NL> W;  // each link's, then summed over its subtree
+  if constexpr (loaded) {
+    const auto xw = state_view(scene, qw.data(), vw.data());
+    const auto mw = link_motions<spatial_algebra, DW, true>(scene, qw.data());
+    gather_external<spatial_algebra>(scene, DW::variable(t, 2 * N), xw, mw, mw, n_w, f_w);
+    for (int L = 0; L < NL; ++L) W[L] = {G::zero_ang(), G::lin::Zero()};
+    for (int L = 1; L < NL; ++L)
+      if (loads.torque[L]) {
+        W[L] = world_wrench<G>(R[L], r[L], lane(n_w[L], -1), loads.force[L] ? lane(f_w[L], -1) : Vec3d::Zero());
+      }
+    for (int L = NL - 1; L >= 1; --L) {
+      b[L - 1] += s[L].dot(W[L]);
+      if (const int P = parent[L]; P != 0) W[P] += W[L];
+    }
   }
 
   // M = Cᵀ·C (Featherstone's LTL factorization, leaves first: C has the
@@ -539,7 +589,14 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   for (int L = NL - 1; L >= 1; --L) {
     const int i = rate[L];
     F[L] += Ic[L] * da[L] + Y[L];
-    for (int j = L; j != 0; j = parent[j]) out(L - 1, rate[j]) = y[L].dot(psi[j]) - inner(z[L], u[j].a);
+    if constexpr (loaded) {
+      // ∂s_L/∂q_j = s_j × s_L turns the loads' share: −(s_j × s_L)ᵀ·W_L.
+      const spatial<G> gw = force_cross(s[L], W[L]);
+      for (int j = L; j != 0; j = parent[j])
+        out(L - 1, rate[j]) = y[L].dot(psi[j]) - inner(z[L], u[j].a) + s[j].dot(gw);
+    } else {
+      for (int j = L; j != 0; j = parent[j]) out(L - 1, rate[j]) = y[L].dot(psi[j]) - inner(z[L], u[j].a);
+    }
     const spatial<G> Gq = force_cross(s[L], F[L]) + Bc[L] * u[L] - Ic[L] * psi[L];
     for (int j = parent[L]; j != 0; j = parent[j]) out(j - 1, i) = -s[j].dot(Gq);
     Y[parent[L]] += y[L] * b[L - 1] + Y[L];
@@ -549,6 +606,25 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   }
   for (int n = 0; n < reading::count; ++n)
     for (int c = 0; c <= 2 * N; ++c) out(reading::link[n] - 1, c) += dQ_read[n].d[c];
+  if constexpr (loaded) {
+    // ∂W_L/∂x: the loads' own derivatives turned into the world, and for q_j
+    // of L's ancestors (and L) the turn of W_L itself, s_j ×* W_L; each
+    // projected on the columns of L and its ancestors.
+    for (int L = 1; L < NL; ++L) {
+      if (!loads.torque[L]) continue;
+      const spatial<G> WL =
+          world_wrench<G>(R[L], r[L], lane(n_w[L], -1), loads.force[L] ? lane(f_w[L], -1) : Vec3d::Zero());
+      for (int c = 0; c <= 2 * N; ++c) {
+        const spatial<G> dW =
+            world_wrench<G>(R[L], r[L], lane(n_w[L], c), loads.force[L] ? lane(f_w[L], c) : Vec3d::Zero());
+        for (int i = L; i != 0; i = parent[i]) out(i - 1, c) += s[i].dot(dW);
+      }
+      for (int j = L; j != 0; j = parent[j]) {
+        const spatial<G> turned = force_cross(s[j], WL);
+        for (int i = L; i != 0; i = parent[i]) out(i - 1, rate[j]) += s[i].dot(turned);
+      }
+    }
+  }
   // One block up to 40 columns; else blocks of 16, the last one taking the
   // remainder (16 to 31 columns), so that no block is a narrow tail.
   constexpr int C = 2 * N + 1;
