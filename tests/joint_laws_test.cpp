@@ -41,14 +41,6 @@ Vec3d dense3(const X& x) {
   }
 }
 
-/// E as a dense matrix, in double: column k is E·e_k.
-template <class T, class E>
-Mat3d dense_rotation(const E& e) {
-  Mat3d r;
-  for (int k = 0; k < 3; ++k) r.col(k) = dense3(rot(e, to_svec(Vec3<T>(Vec3d::Unit(k).cast<T>()))));
-  return r;
-}
-
 template <class J, int Dir, class T = double>
 auto motion_at(const J& j, const T* q) {
   return j.template motion<T, Dir, true>(q);

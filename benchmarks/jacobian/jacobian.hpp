@@ -72,5 +72,6 @@ void measure(const char* name, int n, const S& s, State x) {
 
 void chains();
 void named_scenes();
+void trees();
 
 }  // namespace jacobian_bench
