@@ -17,7 +17,8 @@
 using namespace flange;
 
 namespace {
-/// Both Jacobians and ∂f/∂t at three random states. The two differ by the
+/// Both Jacobians (the analytic one whether or not jacobian() takes it for
+/// this scene) and ∂f/∂t at three random states. The two differ by the
 /// round-off of their solves, a few ε times the largest entry over M's
 /// condition: 1e-12 of the largest entry is the bar (measured: 3e-14 at most).
 template <class S>
@@ -27,7 +28,7 @@ void agree(const S& scene, std::mt19937& rng, double t = 0.3) {
     const auto x = test::random_state(scene, rng);
     Eigen::Matrix<double, S::n_state, 1> ft, ft_dual;
     test::poison_stack();
-    const auto J = jacobian(scene, t, x, &ft);
+    const auto J = detail::jacobian_analytic(scene, t, x, &ft);
     test::poison_stack();
     const auto J_dual = jacobian_dual(scene, t, x, &ft_dual);
     const double scale = std::max(1.0, J_dual.cwiseAbs().maxCoeff());
@@ -118,7 +119,12 @@ TEST_CASE("force elements: the analytic Jacobian equals the dual-number Jacobian
   check.operator()<5, 8, false>();
   check.operator()<9, 8, true>();
   check.operator()<31, 6, false>();
-  agree(models::robot_arm({}, Vec3d(0.1, -0.2, 0.3)), rng);
+  const auto arm = models::robot_arm({}, Vec3d(0.1, -0.2, 0.3));
+  agree(arm, rng);
+  // jacobian() itself takes dual numbers for a one-rate scene with force
+  // elements (they are cheaper there), the analytic path for one without.
+  STATIC_REQUIRE(!detail::jacobian_takes_analytic<std::remove_cvref_t<decltype(arm)>>());
+  STATIC_REQUIRE(detail::jacobian_takes_analytic<decltype(models::chain<1, models::runtime_axes>({}))>());
   agree(models::robot_arm({}, [](auto t) { return Vec3<decltype(t)>(0.0 * t, 0.0 * t, 0.5 * t); }), rng);
 }
 

@@ -21,7 +21,7 @@ inline int failures = 0;
 /// first checks that jacobian() equals it to 1e-12 of the largest entry).
 template <bool WithDual, class S, class State>
 void measure(const char* name, int n, const S& s, State x) {
-  constexpr bool analytic = flange::detail::analytic_derivatives<S>();
+  constexpr bool analytic = flange::detail::jacobian_takes_analytic<S>();
   if constexpr (WithDual && analytic) {
     const auto J = flange::jacobian(s, 0.0, x), Jd = flange::jacobian_dual(s, 0.0, x);
     if ((J - Jd).cwiseAbs().maxCoeff() > 1e-12 * std::max(1.0, Jd.cwiseAbs().maxCoeff())) {

@@ -239,6 +239,14 @@ constexpr bool one_axis_joint() {
   return J::nq == 1 && J::nv == 1 && fixed_subspace<J>;
 }
 
+/// Whether some force element acts on a link (not only on the World).
+template <class S>
+constexpr bool has_link_loads() {
+  for (int L = 1; L < S::tree.n_links; ++L)
+    if (load_flags<S>::value.torque[L]) return true;
+  return false;
+}
+
 /// Whether the scene's ∂v̇/∂x comes from analytic_derivatives (above).
 template <class S>
 constexpr bool analytic_derivatives() {
@@ -436,11 +444,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   using reading = state_reading_links<S>;
   using DW = dual<double, 2 * N + 1>;
   constexpr auto loads = load_flags<S>::value;
-  constexpr bool loaded = [] {
-    for (int L = 1; L < NL; ++L)
-      if (load_flags<S>::value.torque[L]) return true;
-    return false;
-  }();
+  constexpr bool loaded = has_link_loads<S>();
   // The state and the time in every direction, for the drives that read the
   // state and the force elements.
   constexpr bool wide = reading::count > 0 || loaded;

@@ -66,36 +66,58 @@ jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen
   return J;
 }
 
+namespace detail {
+/// Whether jacobian() takes the analytic derivatives: wherever they apply,
+/// but for a scene of one rate with force elements, whose loads' dual
+/// numbers and passes cost more than dual numbers through its derivative (the
+/// paper's arm: 122 ns against 67 ns; docs/performance.md, "The Jacobian").
+template <class S>
+constexpr bool jacobian_takes_analytic() {
+  if constexpr (!analytic_derivatives<S>()) {
+    return false;
+  } else {
+    return S::n_v > 1 || !has_link_loads<S>();
+  }
+}
+
+/// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given, from the analytic
+/// derivatives (dynamics/derivatives.hpp), for a scene they apply to.
+template <class S, class State>
+jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
+                                     Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+  static_assert(analytic_derivatives<S>());
+  S::require_state_size(x);
+  constexpr int nq = S::n_q, nv = S::n_v;
+  std::array<double, S::n_state> xs;
+  for (int i = 0; i < S::n_state; ++i) xs[i] = x[i];
+  detail::derivative_rows<S> d;
+  if (const auto p = detail::acceleration_derivatives(scene, t, xs.data(), xs.data() + nq, d); p.index >= 0) {
+    // M is singular here: the derivative says why (a state that is not
+    // finite, or the joint whose pivot failed), in the scene's own words.
+    std::array<double, S::n_state> f;
+    scene(xs, f, t);
+    detail::singular_mass_matrix<S>(p, t, xs.data(), xs.data() + nq);
+  }
+  jacobian_matrix<S> J;
+  J.template topRows<nq>().setZero();
+  for (int i = 0; i < nv; ++i) J(i, nq + i) = 1;  // q̇ = v: one-axis joints
+  constexpr auto row = detail::derivative_row_rate<S>;
+  for (int r = 0; r < nv; ++r) J.row(nq + row[r]) = d.row(r).template head<2 * nv>();
+  if (dfdt) {
+    dfdt->template head<nq>().setZero();
+    for (int r = 0; r < nv; ++r) (*dfdt)(nq + row[r]) = d(r, 2 * nv);
+  }
+  return J;
+}
+}  // namespace detail
+
 /// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given: analytic where
-/// dynamics/derivatives.hpp covers the scene, else by dual numbers.
+/// dynamics/derivatives.hpp covers the scene (jacobian_takes_analytic), else
+/// by dual numbers.
 template <class S, class State>
 jacobian_matrix<S> jacobian(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
-  if constexpr (detail::analytic_derivatives<S>()) {
-    S::require_state_size(x);
-    constexpr int nq = S::n_q, nv = S::n_v;
-    std::array<double, S::n_state> xs;
-    for (int i = 0; i < S::n_state; ++i) xs[i] = x[i];
-    detail::derivative_rows<S> d;
-    if (const auto p = detail::acceleration_derivatives(scene, t, xs.data(), xs.data() + nq, d); p.index >= 0) {
-      // M is singular here: the derivative says why (a state that is not
-      // finite, or the joint whose pivot failed), in the scene's own words.
-      std::array<double, S::n_state> f;
-      scene(xs, f, t);
-      detail::singular_mass_matrix<S>(p, t, xs.data(), xs.data() + nq);
-    }
-    jacobian_matrix<S> J;
-    J.template topRows<nq>().setZero();
-    for (int i = 0; i < nv; ++i) J(i, nq + i) = 1;  // q̇ = v: one-axis joints
-    constexpr auto row = detail::derivative_row_rate<S>;
-    for (int r = 0; r < nv; ++r) J.row(nq + row[r]) = d.row(r).template head<2 * nv>();
-    if (dfdt) {
-      dfdt->template head<nq>().setZero();
-      for (int r = 0; r < nv; ++r) (*dfdt)(nq + row[r]) = d(r, 2 * nv);
-    }
-    return J;
-  } else {
-    return jacobian_dual(scene, t, x, dfdt);
-  }
+  if constexpr (detail::jacobian_takes_analytic<S>()) return detail::jacobian_analytic(scene, t, x, dfdt);
+  else return jacobian_dual(scene, t, x, dfdt);
 }
 
 /// ∂f/∂x (and ∂f/∂t into *dfdt) by central differences, step
