@@ -22,6 +22,7 @@
 
 #include <benchmark/benchmark.h>
 #include <flange/flange.hpp>
+#include <flange/simulate/jacobian.hpp>
 
 #include "handwritten.hpp"
 

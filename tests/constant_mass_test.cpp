@@ -13,6 +13,7 @@
 
 #include <flange/dynamics/other_algorithm.hpp>
 #include <flange/equations_of_motion.hpp>
+#include <flange/simulate/jacobian.hpp>
 
 using namespace flange;
 using Catch::Matchers::Contains;

@@ -12,6 +12,7 @@
 
 #include <flange/flange.hpp>
 #include <flange/models/paper.hpp>
+#include <flange/simulate/jacobian.hpp>
 
 using namespace flange;
 

@@ -15,6 +15,7 @@
 
 #include <flange/flange.hpp>
 #include <flange/models/linkages.hpp>
+#include <flange/simulate/jacobian.hpp>
 
 #include "loop_laws.hpp"
 #include "scene_orders.hpp"

@@ -9,6 +9,7 @@
 
 #include <flange/equations_of_motion.hpp>
 #include <flange/models/linkages.hpp>
+#include <flange/simulate/jacobian.hpp>
 
 using namespace flange;
 

@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <flange/flange.hpp>
+#include <flange/simulate/jacobian.hpp>
 
 using namespace flange;
 using Catch::Matchers::Contains;

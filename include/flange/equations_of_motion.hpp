@@ -1,12 +1,15 @@
 // flange without the integrators: every component, joint and force element,
 // scenes and their checks, the residual and its listing, the forward dynamics
-// (Newton–Euler + mass matrix, articulated body), recovery, energies,
-// Jacobians, the checked derivative and the example models. It does not
-// include Boost.Odeint, which is half of <flange/flange.hpp>'s compile time:
-// include this header where a unit evaluates derivatives, residuals or
-// Jacobians without integrating (an embedded controller, another integrator,
-// a test of the equations). <flange/flange.hpp> is this plus simulate/
-// (Odeint's steppers, simulate(), projection).
+// (Newton–Euler + mass matrix, articulated body), recovery, energies, the
+// checked derivative and the example models. It does not include
+// Boost.Odeint, which is half of <flange/flange.hpp>'s compile time: include
+// this header where a unit evaluates derivatives or residuals without
+// integrating (an embedded controller, another integrator, a test of the
+// equations). <flange/flange.hpp> is this plus simulate/ (Odeint's steppers,
+// simulate(), projection). The exact Jacobian, jacobian(scene, t, x), is
+// <flange/simulate/jacobian.hpp> (its derivative passes cost every unit that
+// parses them about 0.8 s of g++'s time, so only units that ask pay); the
+// stiff stepper, linearize and equilibrium include it.
 #pragma once
 #include "flange/math/rotation.hpp"
 #include "flange/components/world.hpp"
@@ -40,5 +43,4 @@
 #include "flange/models/legged.hpp"
 #include "flange/models/tree.hpp"
 #include "flange/models/linkages.hpp"
-#include "flange/simulate/jacobian.hpp"
 #include "flange/simulate/checked.hpp"

@@ -1,6 +1,7 @@
 // An input written for double cannot carry dual numbers: asking for the
 // Jacobian must say so, not silently treat the input as constant.
 #include <flange/equations_of_motion.hpp>
+#include <flange/simulate/jacobian.hpp>
 using namespace flange;
 int main() {
 #ifdef FLANGE_KO
