@@ -493,16 +493,17 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   // world origin they enter τ_i as −s_iᵀ·Σ_{L in i's subtree} W_L: into b
   // here; their derivatives after the passes, below.
   std::conditional_t<loaded, link_loads<S, DW>, std::array<int, 0>> n_w, f_w;
-  std::array<spatial<G>, NL> W;  // each link's, then summed over its subtree
+  std::array<spatial<G>, NL> W_own, W;  // each link's; summed over its subtree
   if constexpr (loaded) {
     const auto xw = state_view(scene, qw.data(), vw.data());
     const auto mw = link_motions<spatial_algebra, DW, true>(scene, qw.data());
     gather_external<spatial_algebra>(scene, DW::variable(t, 2 * N), xw, mw, mw, n_w, f_w);
-    for (int L = 0; L < NL; ++L) W[L] = {G::zero_ang(), G::lin::Zero()};
+    for (int L = 0; L < NL; ++L) W_own[L] = {G::zero_ang(), G::lin::Zero()};
     for (int L = 1; L < NL; ++L)
       if (loads.torque[L]) {
-        W[L] = world_wrench<G>(R[L], r[L], lane(n_w[L], -1), loads.force[L] ? lane(f_w[L], -1) : Vec3d::Zero());
+        W_own[L] = world_wrench<G>(R[L], r[L], lane(n_w[L], -1), loads.force[L] ? lane(f_w[L], -1) : Vec3d::Zero());
       }
+    W = W_own;
     for (int L = NL - 1; L >= 1; --L) {
       b[L - 1] += s[L].dot(W[L]);
       if (const int P = parent[L]; P != 0) W[P] += W[L];
@@ -593,13 +594,13 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   for (int L = NL - 1; L >= 1; --L) {
     const int i = rate[L];
     F[L] += Ic[L] * da[L] + Y[L];
-    if constexpr (loaded) {
-      // ∂s_L/∂q_j = s_j × s_L turns the loads' share: −(s_j × s_L)ᵀ·W_L.
-      const spatial<G> gw = force_cross(s[L], W[L]);
-      for (int j = L; j != 0; j = parent[j])
-        out(L - 1, rate[j]) = y[L].dot(psi[j]) - inner(z[L], u[j].a) + s[j].dot(gw);
-    } else {
-      for (int j = L; j != 0; j = parent[j]) out(L - 1, rate[j]) = y[L].dot(psi[j]) - inner(z[L], u[j].a);
+    // With loads, ∂s_L/∂q_j = s_j × s_L turns their share: −(s_j × s_L)ᵀ·W_L.
+    std::conditional_t<loaded, spatial<G>, int> gw{};
+    if constexpr (loaded) gw = force_cross(s[L], W[L]);
+    for (int j = L; j != 0; j = parent[j]) {
+      double e = y[L].dot(psi[j]) - inner(z[L], u[j].a);
+      if constexpr (loaded) e += s[j].dot(gw);
+      out(L - 1, rate[j]) = e;
     }
     const spatial<G> Gq = force_cross(s[L], F[L]) + Bc[L] * u[L] - Ic[L] * psi[L];
     for (int j = parent[L]; j != 0; j = parent[j]) out(j - 1, i) = -s[j].dot(Gq);
@@ -616,15 +617,13 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
     // projected on the columns of L and its ancestors.
     for (int L = 1; L < NL; ++L) {
       if (!loads.torque[L]) continue;
-      const spatial<G> WL =
-          world_wrench<G>(R[L], r[L], lane(n_w[L], -1), loads.force[L] ? lane(f_w[L], -1) : Vec3d::Zero());
       for (int c = 0; c <= 2 * N; ++c) {
         const spatial<G> dW =
             world_wrench<G>(R[L], r[L], lane(n_w[L], c), loads.force[L] ? lane(f_w[L], c) : Vec3d::Zero());
         for (int i = L; i != 0; i = parent[i]) out(i - 1, c) += s[i].dot(dW);
       }
       for (int j = L; j != 0; j = parent[j]) {
-        const spatial<G> turned = force_cross(s[j], WL);
+        const spatial<G> turned = force_cross(s[j], W_own[L]);
         for (int i = L; i != 0; i = parent[i]) out(i - 1, rate[j]) += s[i].dot(turned);
       }
     }
