@@ -324,7 +324,7 @@ int main(int argc, char** argv) {
   for (const char* scene : {"robot_arm", "gantry_crane"}) ratio("overhead", scene, "rk4_step_array", "by_value", "generated");
   for (const char* scene : {"robot_arm", "gantry_crane"}) ratio("overhead", scene, "simulate_1s", "checked", "raw");
   for (const char* scene : {"robot_arm", "gantry_crane"})
-    ratio("jacobian", scene, "jacobian", "exact", "finite_difference");
+    ratio("ratio", scene, "jacobian", "exact", "finite_difference");
   // (The exact Jacobian against one derivative, "jacobian <scene> N=<n> …",
   // is benchmarks/jacobian's, for these scenes and the chains.)
   for (const auto& [name, ns] : rep.ns)
