@@ -181,8 +181,12 @@ class Contact {
     // The middle of the overlap, moved toward the softer side.
     cp.point = o.surface - (T(s_) * cp.depth) * N;
     // The velocity of b relative to a at that point: δ̇ along N, the slip across it.
-    const Vec3<T> va = a.v + (a.R.transpose() * a.w).cross(cp.point - a.r);
-    const Vec3<T> vb = b.v + (b.R.transpose() * b.w).cross(cp.point - b.r);
+    // (ω in world coordinates as plain vectors: g++ calls Eigen's cross of a
+    // product expression out of line.)
+    const Vec3<T> wa = a.R.transpose() * a.w, wb = b.R.transpose() * b.w;
+    const Vec3<T> da = cp.point - a.r, db = cp.point - b.r;
+    const Vec3<T> va = a.v + wa.cross(da);
+    const Vec3<T> vb = b.v + wb.cross(db);
     const Vec3<T> v = vb - va;
     cp.depth_rate = v.dot(N);
     const Vec3<T> vt = v - cp.depth_rate * N;
