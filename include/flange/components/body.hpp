@@ -28,6 +28,7 @@
 #pragma once
 #include <boost/hana/tuple.hpp>
 
+#include "flange/detail/lazy.hpp"
 #include "flange/core/component.hpp"
 #include "flange/core/frame_kinematics.hpp"
 #include "flange/math/rotation.hpp"
@@ -69,6 +70,7 @@ wrench<T> body_wrench(double m, const Mat3d& J, const Vec3d& r_cm, const frame_k
 }
 /// Mass m, inertia J about the centre of mass and the centre r_CM, all in
 /// frame_a: the inertia about frame_a's origin.
+FLANGE_LAZY
 inline Mat3d inertia_about_origin(double m, const Mat3d& J, const Vec3d& r_cm) {
   const Mat3d c = tilde<double>(r_cm);
   return J - m * c * c;
@@ -77,6 +79,7 @@ inline Mat3d inertia_about_origin(double m, const Mat3d& J, const Vec3d& r_cm) {
 /// physical inertia (diagonal for inertia_kind::diagonal, zero for a point
 /// mass), r_cm finite and zero unless the body is declared cm::offset. A
 /// plain function, compiled once per unit rather than once per body type.
+FLANGE_LAZY
 inline void check_body(std::string_view name, bool diagonal, bool point, bool cm_offset, double m, const Mat3d& J,
                        const Vec3d& r_cm) {
   require_finite(name, "Body", "m (mass)", m);

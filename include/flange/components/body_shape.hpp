@@ -23,6 +23,7 @@
 
 #include <boost/hana/tuple.hpp>
 
+#include "flange/detail/lazy.hpp"
 #include "flange/components/body.hpp"
 #include "flange/core/component.hpp"
 #include "flange/core/joint.hpp"
@@ -39,6 +40,7 @@ namespace detail {
 
 /// The shape frame's axes (rows) in frame_a: x along n, y toward y_hint
 /// (Modelica's Frames.from_nxy; another hint if y_hint is parallel to n).
+FLANGE_LAZY
 inline Mat3d shape_axes(const Vec3d& n, const Vec3d& y_hint) {
   const Vec3d ex = n.normalized();
   Vec3d ez = ex.cross(y_hint);

@@ -21,6 +21,7 @@
 
 #include <Eigen/LU>
 
+#include "flange/detail/lazy.hpp"
 #include "flange/core/expr.hpp"
 #include "flange/detail/always_false.hpp"
 #include "flange/detail/fixed_string.hpp"
@@ -227,6 +228,7 @@ void require_finite(std::string_view component, std::string_view kind, std::stri
 /// Modelica normalises a joint axis). The vector is first divided by its
 /// largest component, so that no length overflows or underflows: any finite
 /// direction from 1e-300 to 1e300 long is accepted.
+FLANGE_LAZY
 inline Vec3d unit_axis(std::string_view component, std::string_view kind, const Vec3d& n) {
   require_finite(component, kind, "n (axis)", n);
   const double big = n.cwiseAbs().maxCoeff();
@@ -238,6 +240,7 @@ inline Vec3d unit_axis(std::string_view component, std::string_view kind, const 
 }
 
 /// A rotation matrix: finite, orthogonal and right-handed (to 1e-9).
+FLANGE_LAZY
 inline void require_rotation(std::string_view component, std::string_view kind, std::string_view what,
                              const Mat3d& R) {
   require_finite(component, kind, what, R);
@@ -251,6 +254,7 @@ inline void require_rotation(std::string_view component, std::string_view kind, 
 /// The eigenvalues of a symmetric 3×3 matrix, ascending: cyclic Jacobi
 /// rotations until the off-diagonal entries vanish against the diagonal
 /// (each eigenvalue to about 1e-16 of the largest; a few sweeps).
+FLANGE_LAZY
 inline Vec3d symmetric_eigenvalues(const Mat3d& A) {
   double a[3][3];
   for (int i = 0; i < 3; ++i)
@@ -285,6 +289,7 @@ inline Vec3d symmetric_eigenvalues(const Mat3d& A) {
 /// A physical inertia tensor: finite, symmetric, positive semi-definite, and
 /// its principal moments obey the triangle inequality, to 1e-12 of J's
 /// largest entry.
+FLANGE_LAZY
 inline void require_inertia(std::string_view component, std::string_view kind, const Mat3d& J) {
   require_finite(component, kind, "J (inertia)", J);
   const double scale = std::max(J.cwiseAbs().maxCoeff(), 1e-300);

@@ -32,6 +32,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "flange/detail/lazy.hpp"
 #include "flange/core/joint.hpp"
 #include "flange/math/rotation.hpp"
 #include "flange/math/types.hpp"
@@ -114,6 +115,7 @@ constexpr int set_rotation_kind(int set) {
 /// A_L for a unit axis n: a rotation with rows x, y, n (A_L·n = e_z), and x
 /// normal to m (the aligned child's axis) where the two axes are not
 /// parallel.
+FLANGE_LAZY
 inline Mat3d axis_frame_rotation(const Vec3d& n, const Vec3d& m = Vec3d::Zero()) {
   Vec3d e1, e2;
   complete_basis(n, e1, e2);

@@ -6,6 +6,7 @@
 // (constant_mass_matrix), its inverse. These are constants of the scene, so
 // the derivative never recomputes them.
 #pragma once
+#include "flange/detail/lazy.hpp"
 #include "flange/detail/inline.hpp"
 #include <algorithm>
 #include <array>
@@ -214,6 +215,7 @@ void turn_to_axis_frames(const S& scene, Model& model) {
 
 /// Set s's pose from its parent set's (Rp, pp) through a rigid edge whose
 /// frame_b sits at x in its frame_a, walked forwards (from frame_a) or back.
+FLANGE_LAZY
 [[gnu::noinline]] inline void place_set(Mat3d& R, Vec3d& p, const Mat3d& Rp, const Vec3d& pp, const pose<double>& x,
                                         bool forward) {
   if (forward) {
@@ -224,17 +226,20 @@ void turn_to_axis_frames(const S& scene, Model& model) {
     p = pp - Rp.transpose() * (x.R * x.p);
   }
 }
+FLANGE_LAZY
 [[noreturn, gnu::cold]] inline void frame_overflows(const std::string& who, const Vec3d& p, double mass_scale) {
   throw parameter_error(concat(who, ": it places a frame at [", p, "] m from its link's origin, where mass times "
                                "length squared (", mass_scale, " kg · |p|²) overflows the dynamics; rescale the "
                                "scene's units"));
 }
+FLANGE_LAZY
 [[noreturn, gnu::cold]] inline void total_mass_overflows(const std::string& who, double m) {
   throw parameter_error(concat(who, ": mass m = ", m, " makes the scene's total mass overflow"));
 }
 /// Adds a body (mass m, centre of mass r_cm and inertia J about its frame,
 /// in the frame's coordinates) whose frame sits at p, turned by R, in its
 /// link; throws naming the body when the sum overflows.
+FLANGE_LAZY
 [[gnu::noinline]] inline void add_body(rigid_inertia<double>& link, const Mat3d& R, const Vec3d& p, double m,
                                        const Vec3d& r_cm, const Mat3d& J, std::string_view type,
                                        std::string_view name) {

@@ -30,6 +30,7 @@
 #include <string_view>
 #include <type_traits>
 
+#include "flange/detail/lazy.hpp"
 #include "flange/components/body_shape.hpp"
 #include "flange/core/component.hpp"
 #include "flange/core/frame_kinematics.hpp"
@@ -99,24 +100,29 @@ inline void require_shape(bool ok, std::string_view name, std::string_view which
 }
 
 /// Hertz's force grows with the radius: a point (radius 0) would push with none.
+FLANGE_LAZY
 inline void check_radius(std::string_view name, std::string_view which, double r) {
   require_finite(name, "Contact", which, r);
   require_shape(r > 0, name, which, " = ", r, " must be positive (a point is a small sphere: Hertz's force vanishes with the radius)");
 }
 
+FLANGE_LAZY
 inline void check_unit(std::string_view name, std::string_view which, const Vec3d& n) {
   require_finite(name, "Contact", which, n);
   require_shape(std::abs(n.norm() - 1) <= 1e-9, name, which, " = [", n.transpose(), "] is not a unit vector (norm ",
                 n.norm(), ")");
 }
 
+FLANGE_LAZY
 inline void check_shape(std::string_view name, std::string_view which, const contact_shape::sphere& s) {
   check_radius(name, concat(which, ".radius"), s.radius);
 }
+FLANGE_LAZY
 inline void check_shape(std::string_view name, std::string_view which, const contact_shape::half_space& s) {
   require_finite(name, "Contact", concat(which, ".offset"), s.offset);
   check_unit(name, concat(which, ".n"), s.n);
 }
+FLANGE_LAZY
 inline void check_shape(std::string_view name, std::string_view which, const contact_shape::box& s) {
   require_finite(name, "Contact", concat(which, ".half_extents"), s.half_extents);
   require_finite(name, "Contact", concat(which, ".center"), s.center);
@@ -128,6 +134,7 @@ inline void check_shape(std::string_view name, std::string_view which, const con
   require_shape(s.corner_radius <= s.half_extents.minCoeff(), name, which, ".corner_radius = ", s.corner_radius,
                 " exceeds the smallest half extent ", s.half_extents.minCoeff());
 }
+FLANGE_LAZY
 inline void check_shape(std::string_view name, std::string_view which, const contact_shape::capsule& s) {
   check_radius(name, concat(which, ".radius"), s.radius);
   require_finite(name, "Contact", concat(which, ".half_length"), s.half_length);

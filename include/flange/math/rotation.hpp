@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "flange/detail/inline.hpp"
+#include "flange/detail/lazy.hpp"
 #include "flange/math/sincos.hpp"
 #include "flange/math/types.hpp"
 
@@ -22,6 +23,7 @@ namespace flange {
 /// with its part along n taken off, e2 = n × e1. The one rule flange uses
 /// wherever it needs a direction normal to an axis (cut joints, loop
 /// constraints, axis frames).
+FLANGE_LAZY
 inline void complete_basis(const Vec3<double>& n, Vec3<double>& e1, Vec3<double>& e2) {
   const Vec3<double> a = std::abs(n.x()) < 0.9 ? Vec3<double>::UnitX() : Vec3<double>::UnitY();
   e1 = (a - a.dot(n) * n).normalized();
@@ -101,22 +103,26 @@ struct orientation {
   Mat3<double> R = Mat3<double>::Identity();
 
   /// Turned by angle about n (any non-zero length).
+  FLANGE_LAZY
   static orientation axis_angle(const Vec3<double>& n, double angle) {
     return {axis_rotation<double>(n.normalized(), angle)};
   }
   /// Modelica's Cardan angles (axesRotations {1, 2, 3}): turned about x by
   /// a, then about the new y by b, then about the new z by c.
+  FLANGE_LAZY
   static orientation cardan(double a, double b, double c) {
     return {axis_rotation<double>(Vec3<double>::UnitZ(), c) * axis_rotation<double>(Vec3<double>::UnitY(), b) *
             axis_rotation<double>(Vec3<double>::UnitX(), a)};
   }
   /// URDF's roll, pitch, yaw: turned about the reference's x by roll, then
   /// its y by pitch, then its z by yaw (fixed axes).
+  FLANGE_LAZY
   static orientation rpy(double roll, double pitch, double yaw) {
     return {axis_rotation<double>(Vec3<double>::UnitX(), roll) * axis_rotation<double>(Vec3<double>::UnitY(), pitch) *
             axis_rotation<double>(Vec3<double>::UnitZ(), yaw)};
   }
   /// A rotation matrix in the paper's convention (checked orthogonal where it is used).
+  FLANGE_LAZY
   static orientation matrix(const Mat3<double>& R) { return {R}; }
 };
 

@@ -45,9 +45,10 @@ struct fourbar_params {
 /// The four-bar: the crank turns about O2 (joint "crank_pivot", q = θ2, the
 /// crank's angle from the ground line), then "crank_pin" (coupler relative
 /// to crank) and "rocker_pin" (rocker relative to coupler); "rocker_pivot"
-/// closes the loop at O4 and is cut.
-template <class Axis = axis::z>
-auto fourbar(const fourbar_params& p) {
+/// closes the loop at O4 and is cut. (Params is a template parameter so
+/// that the scene is instantiated only where fourbar is called.)
+template <class Axis = axis::z, class Params = fourbar_params>
+auto fourbar(const Params& p) {
   return scene(World<"world">({.g = p.g}),                                                     //
                Revolute<"crank_pivot", Axis>{}, bar<"crank">(p.crank, p.m_crank),  //
                Revolute<"crank_pin", Axis>{}, bar<"coupler">(p.coupler, p.m_coupler),

@@ -20,6 +20,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "flange/detail/lazy.hpp"
 #include "flange/core/component.hpp"
 #include "flange/detail/always_false.hpp"
 #include "flange/scene/diagnostics.hpp"
@@ -137,6 +138,7 @@ template <class S, int K, class T>
 void cut_joint_values(const S& scene, const T* q, const T* v, T* cq, T* cv);
 
 /// The error of a view made without its scene that is asked for a cut joint.
+FLANGE_LAZY
 [[noreturn]] inline void cut_joint_needs_scene(std::string_view name) {
   throw parameter_error(concat("flange: joint \"", name, "\" closes a loop and is read from its frames, which ",
                                "this joint state cannot place: it was made as state_view<S>(q, v); make it as ",

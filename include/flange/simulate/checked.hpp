@@ -27,6 +27,7 @@
 // and lets the derivative's own errors (singular mass matrix) through.
 // b.rhs_evals counts the evaluations, so b also reports the cost of a run.
 #pragma once
+#include "flange/detail/lazy.hpp"
 #include "flange/detail/inline.hpp"
 #include <algorithm>
 #include <array>
@@ -106,6 +107,7 @@ drift_report invariant_drift(const S& scene, const State& x) {
   return d;
 }
 
+FLANGE_LAZY
 [[gnu::cold]] inline std::string budget_spent(long max_rhs_evals) {
   return concat("the budget of ", max_rhs_evals,
                 " derivative evaluations is spent (a stiff scene for an explicit stepper? try rosenbrock4)");

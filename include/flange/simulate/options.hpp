@@ -12,6 +12,7 @@
 #include <limits>
 #include <optional>
 
+#include "flange/detail/lazy.hpp"
 #include "flange/errors.hpp"
 
 namespace flange {
@@ -29,6 +30,7 @@ struct simulate_options {
 
 namespace detail {
 /// Checks a run's options and times; throws parameter_error naming `who`.
+FLANGE_LAZY
 inline void check_run(const char* who, const simulate_options& o, double t0, double t1) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
   const bool abs_ok = o.abs_tol() >= 10 * eps;

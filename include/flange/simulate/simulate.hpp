@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "flange/detail/lazy.hpp"
 #include "flange/errors.hpp"
 #include "flange/simulate/checked.hpp"
 #include "flange/simulate/integrate.hpp"
@@ -125,6 +126,7 @@ struct sample_times {
 };
 
 /// Checks requested output times: at least two, finite, strictly monotone.
+FLANGE_LAZY
 inline void check_times(const std::vector<double>& times) {
   if (times.size() < 2)
     throw parameter_error(concat("flange: simulate: ", times.size(),
@@ -188,6 +190,7 @@ template <fixed_string Name, class S, class State>
 
 /// Times from t0 to t1 every dt: t0 + k·dt while before t1, and t1 itself
 /// (a last interval shorter than dt, never one shorter than 1e-9·dt).
+FLANGE_LAZY
 inline std::vector<double> output_times(double t0, double t1, double dt) {
   if (!(std::isfinite(t0) && std::isfinite(t1) && t1 != t0))
     throw parameter_error(detail::concat("flange: output_times: needs finite t0 != t1 (got ", t0, ", ", t1, ")"));
