@@ -28,9 +28,9 @@
 #pragma once
 #include <boost/hana/tuple.hpp>
 
-#include "flange/detail/lazy.hpp"
 #include "flange/core/component.hpp"
 #include "flange/core/frame_kinematics.hpp"
+#include "flange/detail/lazy.hpp"
 #include "flange/math/rotation.hpp"
 
 namespace flange {
@@ -78,7 +78,8 @@ inline Mat3d inertia_about_origin(double m, const Mat3d& J, const Vec3d& r_cm) {
 /// A Body's parameters checked: the mass finite and non-negative, J a
 /// physical inertia (diagonal for inertia_kind::diagonal, zero for a point
 /// mass), r_cm finite and zero unless the body is declared cm::offset. A
-/// plain function, compiled once per unit rather than once per body type.
+/// function of its own, compiled once per unit that calls it (FLANGE_LAZY)
+/// rather than once per body type.
 FLANGE_LAZY
 inline void check_body(std::string_view name, bool diagonal, bool point, bool cm_offset, double m, const Mat3d& J,
                        const Vec3d& r_cm) {

@@ -23,10 +23,10 @@
 
 #include <boost/hana/tuple.hpp>
 
-#include "flange/detail/lazy.hpp"
 #include "flange/components/body.hpp"
 #include "flange/core/component.hpp"
 #include "flange/core/joint.hpp"
+#include "flange/detail/lazy.hpp"
 
 namespace flange {
 

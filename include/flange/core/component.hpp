@@ -21,10 +21,10 @@
 
 #include <Eigen/LU>
 
-#include "flange/detail/lazy.hpp"
 #include "flange/core/expr.hpp"
 #include "flange/detail/always_false.hpp"
 #include "flange/detail/fixed_string.hpp"
+#include "flange/detail/lazy.hpp"
 #include "flange/errors.hpp"
 #include "flange/math/types.hpp"
 

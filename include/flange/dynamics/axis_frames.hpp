@@ -32,8 +32,8 @@
 #include <type_traits>
 #include <utility>
 
-#include "flange/detail/lazy.hpp"
 #include "flange/core/joint.hpp"
+#include "flange/detail/lazy.hpp"
 #include "flange/math/rotation.hpp"
 #include "flange/math/types.hpp"
 

@@ -6,7 +6,6 @@
 // (constant_mass_matrix), its inverse. These are constants of the scene, so
 // the derivative never recomputes them.
 #pragma once
-#include "flange/detail/lazy.hpp"
 #include "flange/detail/inline.hpp"
 #include <algorithm>
 #include <array>
@@ -15,6 +14,7 @@
 
 #include "flange/core/component.hpp"
 #include "flange/core/joint.hpp"
+#include "flange/detail/lazy.hpp"
 #include "flange/dynamics/axis_frames.hpp"
 #include "flange/dynamics/ldlt.hpp"
 #include "flange/math/rotation.hpp"

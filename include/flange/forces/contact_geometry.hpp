@@ -30,11 +30,11 @@
 #include <string_view>
 #include <type_traits>
 
-#include "flange/detail/lazy.hpp"
 #include "flange/components/body_shape.hpp"
 #include "flange/core/component.hpp"
 #include "flange/core/frame_kinematics.hpp"
 #include "flange/detail/inline.hpp"
+#include "flange/detail/lazy.hpp"
 
 namespace flange {
 

@@ -20,9 +20,9 @@
 #include <type_traits>
 #include <utility>
 
-#include "flange/detail/lazy.hpp"
 #include "flange/core/component.hpp"
 #include "flange/detail/always_false.hpp"
+#include "flange/detail/lazy.hpp"
 #include "flange/scene/diagnostics.hpp"
 #include "flange/detail/fixed_string.hpp"
 

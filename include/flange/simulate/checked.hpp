@@ -27,7 +27,6 @@
 // and lets the derivative's own errors (singular mass matrix) through.
 // b.rhs_evals counts the evaluations, so b also reports the cost of a run.
 #pragma once
-#include "flange/detail/lazy.hpp"
 #include "flange/detail/inline.hpp"
 #include <algorithm>
 #include <array>
@@ -35,6 +34,7 @@
 #include <limits>
 #include <memory>
 
+#include "flange/detail/lazy.hpp"
 #include "flange/errors.hpp"
 #include "flange/simulate/system.hpp"
 
