@@ -4,24 +4,42 @@
 # <flange/equations_of_motion.hpp>) for <target>, through CMake's
 # target_precompile_headers: the target's units then start from the parsed
 # headers instead of parsing Eigen, Hana, Odeint and flange again each time.
-# The header is built once per target (about 14 s of compiler time) and
-# again only when flange's headers or the target's flags change; each unit
-# of the target saves about 4 s on every later compile, so an edit of a
-# scene recompiles in the time of its instantiations alone
-# (docs/performance.md, "Compile time").
+# It also compiles flange's scene-independent code once for the target
+# (FLANGE_COMMON, flange/detail/lazy.hpp: the parameter checks, a body's
+# placement in its link, error messages): the target's units declare it
+# extern (FLANGE_COMMON_EXTERN) and call it, and one added unit,
+# flange_common.cpp, defines it. The header and that unit are built once
+# per target (about 16 and 6 s of compiler time) and again only when
+# flange's headers or the target's flags change; each unit of the target
+# then compiles in the time of its scene's instantiations alone, about 5 s
+# less than without (docs/performance.md, "Compile time").
 #
 #   add_executable(my_sim my_sim.cpp)
 #   target_link_libraries(my_sim PRIVATE flange::flange)
 #   flange_precompile_headers(my_sim)
 #
 # Several targets with the same flags can share one precompiled header:
-# target_precompile_headers(other REUSE_FROM my_sim).
+# target_precompile_headers(other REUSE_FROM my_sim), with
+# flange_common_code(other) for the extern code.
+set(_flange_common_source ${CMAKE_CURRENT_LIST_DIR}/flange_common.cpp)
+
+# flange_common_code(<target>): the target's units declare flange's
+# scene-independent code extern, and flange_common.cpp, added to the target
+# without a precompiled header, defines it.
+function(flange_common_code target)
+  target_compile_definitions(${target} PRIVATE FLANGE_COMMON_EXTERN)
+  target_sources(${target} PRIVATE ${_flange_common_source})
+  set_source_files_properties(${_flange_common_source} TARGET_DIRECTORY ${target}
+                              PROPERTIES SKIP_PRECOMPILE_HEADERS ON)
+endfunction()
+
 function(flange_precompile_headers target)
   cmake_parse_arguments(FP "" "" "HEADERS" ${ARGN})
   if(NOT FP_HEADERS)
     set(FP_HEADERS <flange/flange.hpp>)
   endif()
   target_precompile_headers(${target} PRIVATE ${FP_HEADERS})
+  flange_common_code(${target})
   # GCC (up to 12) does not keep the "#pragma GCC diagnostic" state of the
   # precompiled headers: Eigen's silencing of -Wignored-attributes (an
   # attribute of its SIMD packet types, harmless) is lost, and every unit

@@ -68,21 +68,24 @@ wrench<T> body_wrench(double m, const Mat3d& J, const Vec3d& r_cm, const frame_k
   const Vec3<T> F = T(m) * (k.R * (k.a - g) + k.wd.cross(c) + k.w.cross(k.w.cross(c)));
   return {F, I * k.wd + k.w.cross(I * k.w) + c.cross(F)};
 }
+FLANGE_COMMON(wrench<double> body_wrench<double>(double, const Mat3d&, const Vec3d&, const frame_kinematics<double>&,
+                                                 const Vec3<double>&))
 /// Mass m, inertia J about the centre of mass and the centre r_CM, all in
 /// frame_a: the inertia about frame_a's origin.
 FLANGE_LAZY
-inline Mat3d inertia_about_origin(double m, const Mat3d& J, const Vec3d& r_cm) {
+Mat3d inertia_about_origin(double m, const Mat3d& J, const Vec3d& r_cm) {
   const Mat3d c = tilde<double>(r_cm);
   return J - m * c * c;
 }
+FLANGE_COMMON(Mat3d inertia_about_origin<0>(double, const Mat3d&, const Vec3d&))
 /// A Body's parameters checked: the mass finite and non-negative, J a
 /// physical inertia (diagonal for inertia_kind::diagonal, zero for a point
 /// mass), r_cm finite and zero unless the body is declared cm::offset. A
 /// function of its own, compiled once per unit that calls it (FLANGE_LAZY)
 /// rather than once per body type.
 FLANGE_LAZY
-inline void check_body(std::string_view name, bool diagonal, bool point, bool cm_offset, double m, const Mat3d& J,
-                       const Vec3d& r_cm) {
+void check_body(std::string_view name, bool diagonal, bool point, bool cm_offset, double m, const Mat3d& J,
+                const Vec3d& r_cm) {
   require_finite(name, "Body", "m (mass)", m);
   if (m < 0) throw parameter_error(concat("Body \"", name, "\": mass m = ", m, " is negative"));
   require_inertia(name, "Body", J);
@@ -97,6 +100,7 @@ inline void check_body(std::string_view name, bool diagonal, bool point, bool cm
     throw parameter_error(concat("Body \"", name, "\": r_cm = [", r_cm, "] is not zero; declare the body as Body<\"",
                                  name, "\", cm::offset> to give it a centre-of-mass offset"));
 }
+FLANGE_COMMON(void check_body<0>(std::string_view, bool, bool, bool, double, const Mat3d&, const Vec3d&))
 }  // namespace detail
 
 template <fixed_string Name, class CM = cm::at_frame, class Inertia = inertia_kind::full>

@@ -41,7 +41,7 @@ namespace detail {
 /// The shape frame's axes (rows) in frame_a: x along n, y toward y_hint
 /// (Modelica's Frames.from_nxy; another hint if y_hint is parallel to n).
 FLANGE_LAZY
-inline Mat3d shape_axes(const Vec3d& n, const Vec3d& y_hint) {
+Mat3d shape_axes(const Vec3d& n, const Vec3d& y_hint) {
   const Vec3d ex = n.normalized();
   Vec3d ez = ex.cross(y_hint);
   if (ez.norm() <= 1e-6 * y_hint.norm()) {
@@ -56,6 +56,7 @@ inline Mat3d shape_axes(const Vec3d& n, const Vec3d& y_hint) {
   T.row(2) = ez;
   return T;
 }
+FLANGE_COMMON(Mat3d shape_axes<0>(const Vec3d&, const Vec3d&))
 
 /// The body of a shape: m, I about the centre (frame_a axes), r_CM, and the
 /// shape's sizes for drawing.

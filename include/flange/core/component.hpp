@@ -223,13 +223,16 @@ void require_finite(std::string_view component, std::string_view kind, std::stri
   if (!all_finite(v))
     throw parameter_error(concat(kind, " \"", component, "\": parameter ", what, " is not finite (", v, ")"));
 }
+FLANGE_COMMON(void require_finite<double>(std::string_view, std::string_view, std::string_view, const double&))
+FLANGE_COMMON(void require_finite<Vec3d>(std::string_view, std::string_view, std::string_view, const Vec3d&))
+FLANGE_COMMON(void require_finite<Mat3d>(std::string_view, std::string_view, std::string_view, const Mat3d&))
 
 /// A unit axis from a user vector: finite and non-zero, then normalised (as
 /// Modelica normalises a joint axis). The vector is first divided by its
 /// largest component, so that no length overflows or underflows: any finite
 /// direction from 1e-300 to 1e300 long is accepted.
 FLANGE_LAZY
-inline Vec3d unit_axis(std::string_view component, std::string_view kind, const Vec3d& n) {
+Vec3d unit_axis(std::string_view component, std::string_view kind, const Vec3d& n) {
   require_finite(component, kind, "n (axis)", n);
   const double big = n.cwiseAbs().maxCoeff();
   if (!(big > 0))
@@ -238,11 +241,12 @@ inline Vec3d unit_axis(std::string_view component, std::string_view kind, const 
   const Vec3d u = n / big;
   return u / u.norm();
 }
+FLANGE_COMMON(Vec3d unit_axis<0>(std::string_view, std::string_view, const Vec3d&))
 
 /// A rotation matrix: finite, orthogonal and right-handed (to 1e-9).
 FLANGE_LAZY
-inline void require_rotation(std::string_view component, std::string_view kind, std::string_view what,
-                             const Mat3d& R) {
+void require_rotation(std::string_view component, std::string_view kind, std::string_view what,
+                      const Mat3d& R) {
   require_finite(component, kind, what, R);
   const double err = (R * R.transpose() - Mat3d::Identity()).cwiseAbs().maxCoeff();
   if (err > 1e-9 || R.determinant() < 0)
@@ -250,12 +254,13 @@ inline void require_rotation(std::string_view component, std::string_view kind, 
                                  err, ", det R = ", R.determinant(), "); give an orthogonal, right-handed matrix, or use orientation::axis_angle, "
                                  "cardan or rpy"));
 }
+FLANGE_COMMON(void require_rotation<0>(std::string_view, std::string_view, std::string_view, const Mat3d&))
 
 /// The eigenvalues of a symmetric 3×3 matrix, ascending: cyclic Jacobi
 /// rotations until the off-diagonal entries vanish against the diagonal
 /// (each eigenvalue to about 1e-16 of the largest; a few sweeps).
 FLANGE_LAZY
-inline Vec3d symmetric_eigenvalues(const Mat3d& A) {
+Vec3d symmetric_eigenvalues(const Mat3d& A) {
   double a[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) a[i][j] = (A(i, j) + A(j, i)) / 2;
@@ -285,12 +290,13 @@ inline Vec3d symmetric_eigenvalues(const Mat3d& A) {
   if (lam(0) > lam(1)) std::swap(lam(0), lam(1));
   return lam;
 }
+FLANGE_COMMON(Vec3d symmetric_eigenvalues<0>(const Mat3d&))
 
 /// A physical inertia tensor: finite, symmetric, positive semi-definite, and
 /// its principal moments obey the triangle inequality, to 1e-12 of J's
 /// largest entry.
 FLANGE_LAZY
-inline void require_inertia(std::string_view component, std::string_view kind, const Mat3d& J) {
+void require_inertia(std::string_view component, std::string_view kind, const Mat3d& J) {
   require_finite(component, kind, "J (inertia)", J);
   const double scale = std::max(J.cwiseAbs().maxCoeff(), 1e-300);
   if ((J - J.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
@@ -305,6 +311,7 @@ inline void require_inertia(std::string_view component, std::string_view kind, c
                                  "] breaks the triangle inequality: principal moment ", lam(2),
                                  " exceeds the sum of the other two (", lam(0) + lam(1), ")"));
 }
+FLANGE_COMMON(void require_inertia<0>(std::string_view, std::string_view, const Mat3d&))
 
 }  // namespace detail
 }  // namespace flange

@@ -103,6 +103,7 @@
 #include "flange/core/component.hpp"
 #include "flange/core/frame_kinematics.hpp"
 #include "flange/detail/inline.hpp"
+#include "flange/detail/lazy.hpp"
 #include "flange/math/quaternion.hpp"
 #include "flange/math/sincos.hpp"
 #include "flange/math/sparse.hpp"
@@ -174,6 +175,8 @@ template <class T>
 wrench<T> flows_b_from_a(const pose<T>& x, const wrench<T>& a) {
   return {-(x.R * a.f), x.R * (x.p.cross(a.f) - a.n)};
 }
+FLANGE_COMMON(wrench<double> flows_a_from_b<double>(const pose<double>&, const wrench<double>&))
+FLANGE_COMMON(wrench<double> flows_b_from_a<double>(const pose<double>&, const wrench<double>&))
 
 /// What a cut joint (one that closes a kinematic loop, dynamics/loops.hpp)
 /// leaves free between its frames; the loop's constraints lock the rest.

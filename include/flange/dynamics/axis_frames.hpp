@@ -116,7 +116,7 @@ constexpr int set_rotation_kind(int set) {
 /// normal to m (the aligned child's axis) where the two axes are not
 /// parallel.
 FLANGE_LAZY
-inline Mat3d axis_frame_rotation(const Vec3d& n, const Vec3d& m = Vec3d::Zero()) {
+Mat3d axis_frame_rotation(const Vec3d& n, const Vec3d& m = Vec3d::Zero()) {
   Vec3d e1, e2;
   complete_basis(n, e1, e2);
   const Vec3d nm = n.cross(m);
@@ -127,5 +127,6 @@ inline Mat3d axis_frame_rotation(const Vec3d& n, const Vec3d& m = Vec3d::Zero())
   A.row(2) = n.transpose();
   return A;
 }
+FLANGE_COMMON(Mat3d axis_frame_rotation<0>(const Vec3d&, const Vec3d&))
 
 }  // namespace flange::detail

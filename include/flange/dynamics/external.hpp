@@ -13,6 +13,7 @@
 #include <string>
 
 #include "flange/detail/inline.hpp"
+#include "flange/detail/lazy.hpp"
 #include "flange/detail/static_for.hpp"
 #include "flange/core/frame_kinematics.hpp"
 #include "flange/dynamics/kinematics.hpp"
@@ -216,6 +217,7 @@ template <class T>
   out += "]";
   return out;
 }
+FLANGE_COMMON(std::string describe_state<double>(const double*, int, const double*, int))
 /// The state (q, v) as values, for a simulation_error.
 template <class T>
 [[nodiscard]] std::vector<double> state_values(const T* q, int nq, const T* v, int nv) {
@@ -225,5 +227,6 @@ template <class T>
   for (int i = 0; i < nv; ++i) x.push_back(static_cast<double>(v[i]));
   return x;
 }
+FLANGE_COMMON(std::vector<double> state_values<double>(const double*, int, const double*, int))
 
 }  // namespace flange::detail

@@ -216,8 +216,8 @@ void turn_to_axis_frames(const S& scene, Model& model) {
 /// Set s's pose from its parent set's (Rp, pp) through a rigid edge whose
 /// frame_b sits at x in its frame_a, walked forwards (from frame_a) or back.
 FLANGE_LAZY
-[[gnu::noinline]] inline void place_set(Mat3d& R, Vec3d& p, const Mat3d& Rp, const Vec3d& pp, const pose<double>& x,
-                                        bool forward) {
+[[gnu::noinline]] void place_set(Mat3d& R, Vec3d& p, const Mat3d& Rp, const Vec3d& pp, const pose<double>& x,
+                                 bool forward) {
   if (forward) {
     R = x.R * Rp;
     p = pp + Rp.transpose() * x.p;
@@ -226,23 +226,25 @@ FLANGE_LAZY
     p = pp - Rp.transpose() * (x.R * x.p);
   }
 }
+FLANGE_COMMON(void place_set<0>(Mat3d&, Vec3d&, const Mat3d&, const Vec3d&, const pose<double>&, bool))
 FLANGE_LAZY
-[[noreturn, gnu::cold]] inline void frame_overflows(const std::string& who, const Vec3d& p, double mass_scale) {
+[[noreturn, gnu::cold]] void frame_overflows(const std::string& who, const Vec3d& p, double mass_scale) {
   throw parameter_error(concat(who, ": it places a frame at [", p, "] m from its link's origin, where mass times "
                                "length squared (", mass_scale, " kg · |p|²) overflows the dynamics; rescale the "
                                "scene's units"));
 }
+FLANGE_COMMON(void frame_overflows<0>(const std::string&, const Vec3d&, double))
 FLANGE_LAZY
-[[noreturn, gnu::cold]] inline void total_mass_overflows(const std::string& who, double m) {
+[[noreturn, gnu::cold]] void total_mass_overflows(const std::string& who, double m) {
   throw parameter_error(concat(who, ": mass m = ", m, " makes the scene's total mass overflow"));
 }
+FLANGE_COMMON(void total_mass_overflows<0>(const std::string&, double))
 /// Adds a body (mass m, centre of mass r_cm and inertia J about its frame,
 /// in the frame's coordinates) whose frame sits at p, turned by R, in its
 /// link; throws naming the body when the sum overflows.
 FLANGE_LAZY
-[[gnu::noinline]] inline void add_body(rigid_inertia<double>& link, const Mat3d& R, const Vec3d& p, double m,
-                                       const Vec3d& r_cm, const Mat3d& J, std::string_view type,
-                                       std::string_view name) {
+[[gnu::noinline]] void add_body(rigid_inertia<double>& link, const Mat3d& R, const Vec3d& p, double m,
+                                const Vec3d& r_cm, const Mat3d& J, std::string_view type, std::string_view name) {
   rigid_inertia<double> b;
   b.m = m;
   b.h = R.transpose() * (m * r_cm);
@@ -253,6 +255,8 @@ FLANGE_LAZY
                                  "] m from its link's origin gives an inertia that overflows; rescale the scene's "
                                  "units"));
 }
+FLANGE_COMMON(void add_body<0>(rigid_inertia<double>&, const Mat3d&, const Vec3d&, double, const Vec3d&,
+                              const Mat3d&, std::string_view, std::string_view))
 
 template <class S>
 auto build_model(const S& scene) {

@@ -101,29 +101,33 @@ inline void require_shape(bool ok, std::string_view name, std::string_view which
 
 /// Hertz's force grows with the radius: a point (radius 0) would push with none.
 FLANGE_LAZY
-inline void check_radius(std::string_view name, std::string_view which, double r) {
+void check_radius(std::string_view name, std::string_view which, double r) {
   require_finite(name, "Contact", which, r);
   require_shape(r > 0, name, which, " = ", r, " must be positive (a point is a small sphere: Hertz's force vanishes with the radius)");
 }
+FLANGE_COMMON(void check_radius<0>(std::string_view, std::string_view, double))
 
 FLANGE_LAZY
-inline void check_unit(std::string_view name, std::string_view which, const Vec3d& n) {
+void check_unit(std::string_view name, std::string_view which, const Vec3d& n) {
   require_finite(name, "Contact", which, n);
   require_shape(std::abs(n.norm() - 1) <= 1e-9, name, which, " = [", n.transpose(), "] is not a unit vector (norm ",
                 n.norm(), ")");
 }
+FLANGE_COMMON(void check_unit<0>(std::string_view, std::string_view, const Vec3d&))
 
 FLANGE_LAZY
-inline void check_shape(std::string_view name, std::string_view which, const contact_shape::sphere& s) {
+void check_shape(std::string_view name, std::string_view which, const contact_shape::sphere& s) {
   check_radius(name, concat(which, ".radius"), s.radius);
 }
+FLANGE_COMMON(void check_shape<0>(std::string_view, std::string_view, const contact_shape::sphere&))
 FLANGE_LAZY
-inline void check_shape(std::string_view name, std::string_view which, const contact_shape::half_space& s) {
+void check_shape(std::string_view name, std::string_view which, const contact_shape::half_space& s) {
   require_finite(name, "Contact", concat(which, ".offset"), s.offset);
   check_unit(name, concat(which, ".n"), s.n);
 }
+FLANGE_COMMON(void check_shape<0>(std::string_view, std::string_view, const contact_shape::half_space&))
 FLANGE_LAZY
-inline void check_shape(std::string_view name, std::string_view which, const contact_shape::box& s) {
+void check_shape(std::string_view name, std::string_view which, const contact_shape::box& s) {
   require_finite(name, "Contact", concat(which, ".half_extents"), s.half_extents);
   require_finite(name, "Contact", concat(which, ".center"), s.center);
   require_finite(name, "Contact", concat(which, ".axes"), s.axes);
@@ -134,14 +138,16 @@ inline void check_shape(std::string_view name, std::string_view which, const con
   require_shape(s.corner_radius <= s.half_extents.minCoeff(), name, which, ".corner_radius = ", s.corner_radius,
                 " exceeds the smallest half extent ", s.half_extents.minCoeff());
 }
+FLANGE_COMMON(void check_shape<0>(std::string_view, std::string_view, const contact_shape::box&))
 FLANGE_LAZY
-inline void check_shape(std::string_view name, std::string_view which, const contact_shape::capsule& s) {
+void check_shape(std::string_view name, std::string_view which, const contact_shape::capsule& s) {
   check_radius(name, concat(which, ".radius"), s.radius);
   require_finite(name, "Contact", concat(which, ".half_length"), s.half_length);
   require_shape(s.half_length >= 0, name, which, ".half_length = ", s.half_length, " is negative");
   require_finite(name, "Contact", concat(which, ".center"), s.center);
   check_unit(name, concat(which, ".axis"), s.axis);
 }
+FLANGE_COMMON(void check_shape<0>(std::string_view, std::string_view, const contact_shape::capsule&))
 
 /// Overlap of a sphere (centre c, radius r, world) with the half-space s at frame b.
 template <class T>

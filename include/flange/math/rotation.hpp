@@ -24,11 +24,12 @@ namespace flange {
 /// wherever it needs a direction normal to an axis (cut joints, loop
 /// constraints, axis frames).
 FLANGE_LAZY
-inline void complete_basis(const Vec3<double>& n, Vec3<double>& e1, Vec3<double>& e2) {
+void complete_basis(const Vec3<double>& n, Vec3<double>& e1, Vec3<double>& e2) {
   const Vec3<double> a = std::abs(n.x()) < 0.9 ? Vec3<double>::UnitX() : Vec3<double>::UnitY();
   e1 = (a - a.dot(n) * n).normalized();
   e2 = n.cross(e1);
 }
+FLANGE_COMMON(void complete_basis<0>(const Vec3<double>&, Vec3<double>&, Vec3<double>&))
 
 /// The angle φ of the turn about the unit n that takes `from` to `to`, in
 /// the paper's convention (R(n, φ)·from = to for their parts normal to n,

@@ -139,11 +139,12 @@ void cut_joint_values(const S& scene, const T* q, const T* v, T* cq, T* cv);
 
 /// The error of a view made without its scene that is asked for a cut joint.
 FLANGE_LAZY
-[[noreturn]] inline void cut_joint_needs_scene(std::string_view name) {
+[[noreturn]] void cut_joint_needs_scene(std::string_view name) {
   throw parameter_error(concat("flange: joint \"", name, "\" closes a loop and is read from its frames, which ",
                                "this joint state cannot place: it was made as state_view<S>(q, v); make it as ",
                                "state_view(scene, q, v)"));
 }
+FLANGE_COMMON(void cut_joint_needs_scene<0>(std::string_view))
 }  // namespace detail
 
 /// The joint state of scene S as an input callable sees it: by position

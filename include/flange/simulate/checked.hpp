@@ -108,10 +108,11 @@ drift_report invariant_drift(const S& scene, const State& x) {
 }
 
 FLANGE_LAZY
-[[gnu::cold]] inline std::string budget_spent(long max_rhs_evals) {
+[[gnu::cold]] std::string budget_spent(long max_rhs_evals) {
   return concat("the budget of ", max_rhs_evals,
                 " derivative evaluations is spent (a stiff scene for an explicit stepper? try rosenbrock4)");
 }
+FLANGE_COMMON(std::string budget_spent<0>(long))
 }  // namespace detail
 
 template <class S>

@@ -31,7 +31,7 @@ struct simulate_options {
 namespace detail {
 /// Checks a run's options and times; throws parameter_error naming `who`.
 FLANGE_LAZY
-inline void check_run(const char* who, const simulate_options& o, double t0, double t1) {
+void check_run(const char* who, const simulate_options& o, double t0, double t1) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
   const bool abs_ok = o.abs_tol() >= 10 * eps;
   const bool rel_ok = o.rel_tol() >= 10 * eps || o.rel_tol() == 0;  // 0: absolute error control only
@@ -47,6 +47,7 @@ inline void check_run(const char* who, const simulate_options& o, double t0, dou
   if (!(o.max_rhs_evals >= 1))
     throw parameter_error(concat("flange: ", who, ": max_rhs_evals = ", o.max_rhs_evals, " must be at least 1"));
 }
+FLANGE_COMMON(void check_run<0>(const char*, const simulate_options&, double, double))
 }  // namespace detail
 
 }  // namespace flange

@@ -127,7 +127,7 @@ struct sample_times {
 
 /// Checks requested output times: at least two, finite, strictly monotone.
 FLANGE_LAZY
-inline void check_times(const std::vector<double>& times) {
+void check_times(const std::vector<double>& times) {
   if (times.size() < 2)
     throw parameter_error(concat("flange: simulate: ", times.size(),
                                  " output time(s) given; give the start and at least one more"));
@@ -141,6 +141,7 @@ inline void check_times(const std::vector<double>& times) {
                                    " follows ", times[k - 1]));
   }
 }
+FLANGE_COMMON(void check_times<0>(const std::vector<double>&))
 }  // namespace detail
 
 /// A run's states at the requested times, and what it cost.
@@ -191,7 +192,7 @@ template <fixed_string Name, class S, class State>
 /// Times from t0 to t1 every dt: t0 + k·dt while before t1, and t1 itself
 /// (a last interval shorter than dt, never one shorter than 1e-9·dt).
 FLANGE_LAZY
-inline std::vector<double> output_times(double t0, double t1, double dt) {
+std::vector<double> output_times(double t0, double t1, double dt) {
   if (!(std::isfinite(t0) && std::isfinite(t1) && t1 != t0))
     throw parameter_error(detail::concat("flange: output_times: needs finite t0 != t1 (got ", t0, ", ", t1, ")"));
   if (!(dt > 0 && std::isfinite(dt)))
@@ -204,6 +205,7 @@ inline std::vector<double> output_times(double t0, double t1, double dt) {
   times.push_back(t1);
   return times;
 }
+FLANGE_COMMON(std::vector<double> output_times<0>(double, double, double))
 
 /// The state at t1 from x0 at t0; observer(x, t) sees the start and every
 /// step. Method: method::dopri5 (the default), method::bulirsch_stoer
