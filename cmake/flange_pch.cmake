@@ -9,10 +9,11 @@
 # placement in its link, error messages): the target's units declare it
 # extern (FLANGE_COMMON_EXTERN) and call it, and one added unit,
 # flange_common.cpp, defines it. The header and that unit are built once
-# per target (about 16 and 6 s of compiler time) and again only when
-# flange's headers or the target's flags change; each unit of the target
-# then compiles in the time of its scene's instantiations alone, about 5 s
-# less than without (docs/performance.md, "Compile time").
+# per target (about twice and once the time of a small scene's unit without
+# them) and again only when flange's headers or the target's flags change;
+# each unit of the target then compiles in the time of its scene's
+# instantiations alone: a pendulum's unit in about a quarter of its time
+# without them (docs/performance.md, "Compile time").
 #
 #   add_executable(my_sim my_sim.cpp)
 #   target_link_libraries(my_sim PRIVATE flange::flange)

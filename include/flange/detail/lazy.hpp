@@ -16,7 +16,7 @@
 // instantiates and optimises it (about a third of a small scene's compile).
 // Where FLANGE_COMMON_EXTERN is defined, each is an explicit instantiation
 // declaration (`extern template`): the units call it and compile none of it,
-// and one unit of the program, cmake/flange_common.cpp, defines
+// and one unit of the target, cmake/flange_common.cpp, defines
 // FLANGE_COMMON_DEFINE and compiles them all once.
 // flange_precompile_headers (cmake/flange_pch.cmake) does both for a
 // target. Otherwise it is nothing, and flange stays header-only. The
