@@ -21,17 +21,33 @@
 #
 # Several targets with the same flags can share one precompiled header:
 # target_precompile_headers(other REUSE_FROM my_sim), with
-# flange_common_code(other) for the extern code.
+# flange_common_code(other) for the extern code (or, for many targets, one
+# flange_common_library(common) and flange_common_code(t OBJECTS common)).
 set(_flange_common_source ${CMAKE_CURRENT_LIST_DIR}/flange_common.cpp)
 
-# flange_common_code(<target>): the target's units declare flange's
-# scene-independent code extern, and flange_common.cpp, added to the target
-# without a precompiled header, defines it.
+# flange_common_code(<target> [OBJECTS <library>]): the target's units
+# declare flange's scene-independent code extern, and flange_common.cpp,
+# added to the target without a precompiled header, defines it. With
+# OBJECTS, the target links that library's copy instead (one made by
+# flange_common_library): targets with the same flags then compile it once
+# between them.
 function(flange_common_code target)
+  cmake_parse_arguments(FC "" "OBJECTS" "" ${ARGN})
   target_compile_definitions(${target} PRIVATE FLANGE_COMMON_EXTERN)
-  target_sources(${target} PRIVATE ${_flange_common_source})
-  set_source_files_properties(${_flange_common_source} TARGET_DIRECTORY ${target}
-                              PROPERTIES SKIP_PRECOMPILE_HEADERS ON)
+  if(FC_OBJECTS)
+    target_sources(${target} PRIVATE $<TARGET_OBJECTS:${FC_OBJECTS}>)
+  else()
+    target_sources(${target} PRIVATE ${_flange_common_source})
+    set_source_files_properties(${_flange_common_source} TARGET_DIRECTORY ${target}
+                                PROPERTIES SKIP_PRECOMPILE_HEADERS ON)
+  endif()
+endfunction()
+
+# flange_common_library(<name>): an OBJECT library of flange_common.cpp, for
+# flange_common_code(<target> OBJECTS <name>).
+function(flange_common_library name)
+  add_library(${name} OBJECT ${_flange_common_source})
+  target_link_libraries(${name} PRIVATE flange::flange)
 endfunction()
 
 function(flange_precompile_headers target)
