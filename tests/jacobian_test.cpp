@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <limits>
+#include <random>
 #include <string>
 
 #include <flange/models/linkages.hpp>
@@ -158,6 +159,45 @@ TEST_CASE("a dual number is exactly zero only with its derivatives") {
   CHECK(exactly_zero(0.0));
   CHECK(exactly_zero(-0.0));
   CHECK_FALSE(exactly_zero(std::numeric_limits<double>::denorm_min()));
+}
+
+TEST_CASE("a dual number's operators with a constant give what the constant as a dual gives") {
+  // dual ± c, c − dual, dual · c and dual / c skip the constant's zero
+  // derivatives; with finite operands the numbers are those of dual(c) but
+  // for the sign of a zero (compared with ==, which does not see it).
+  using D = dual<double, 3>;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-2, 2);
+  auto random_dual = [&] {
+    D x(u(rng));
+    for (auto& e : x.d) e = u(rng);
+    x.d[1] = 0;  // a zero derivative, where a sign could differ
+    return x;
+  };
+  auto same = [](const D& x, const D& y) {
+    bool eq = x.v == y.v;
+    for (int k = 0; k < 3; ++k) eq = eq && x.d[k] == y.d[k];
+    return eq;
+  };
+  for (int i = 0; i < 100; ++i) {
+    const D a = random_dual(), b = random_dual();
+    const double c = u(rng) + 3;  // away from 0, for the division
+    CHECK(same(a + c, a + D(c)));
+    CHECK(same(c + a, D(c) + a));
+    CHECK(same(a - c, a - D(c)));
+    CHECK(same(c - a, D(c) - a));
+    CHECK(same(a * c, a * D(c)));
+    CHECK(same(c * a, D(c) * a));
+    CHECK(same(a / c, a / D(c)));
+    CHECK(same(-a, D(0.0) - a));
+    // and the dual-dual operators as their compound forms
+    D s = a;
+    s *= b;
+    CHECK(same(a * b, s));
+    s = a;
+    s /= b + D(5.0);
+    CHECK(same(a / (b + D(5.0)), s));
+  }
 }
 
 TEST_CASE("rosenbrock4 with the exact Jacobian converges to the tight reference") {
