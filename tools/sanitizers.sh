@@ -71,8 +71,9 @@ configure() {  # dir, flags, extra cmake args…
 #     constructs, and flange's Eigen::Maps are unaligned ones;
 #   vptr: flange has no virtual functions.
 # Bounds, integer and float-cast overflow, shifts, division by zero, enums,
-# bools, returns and the rest stay on.
-ubsan_off="null,pointer-overflow,object-size,alignment,vptr"
+# bools, returns and the rest stay on. The list is cmake/ubsan_off.txt, which
+# fuzz/CMakeLists.txt reads too.
+ubsan_off=$(<"$root/cmake/ubsan_off.txt")
 asan_flags="-fsanitize=address,undefined -fno-sanitize=$ubsan_off -fno-sanitize-recover=all"
 
 asan_targets=()
