@@ -435,7 +435,7 @@ TEST_CASE("a BodyBox and a BodyCylinder lend their shapes to a Contact in one li
   // Its box's corners: frame_a's origin and r are the centres of two opposite faces.
   const detail::contact_pair<contact_shape::box, contact_shape::half_space> pair{b, {}};
   for (int i = 0; i < 8; ++i) {
-    const double along = pair.corner(i).dot(r.normalized());
+    const double along = pair.center(i).dot(r.normalized());
     CHECK(std::abs(std::abs(along - 0.2) - (0.2 - 0.005)) < 1e-15);
   }
   // A BodyCylinder 0.5 m long along x, 0.1 across: the capsule of its radius and length.

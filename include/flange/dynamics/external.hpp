@@ -5,8 +5,11 @@
 // links it acts on. Line forces (Spring, Damper, SpringDamper) and world loads
 // (WorldForce, WorldTorque) need the frames' positions and velocities; for
 // scenes with them only, a pose pass (kinematics.hpp) runs first and each
-// element reports the wrench it exerts at its frames (wrenches()). A scene
-// without force elements has none of this.
+// element reports the wrench it exerts at its frames (wrenches()), or, for a
+// Contact against a half-space at rest in the World (a ground, a wall), adds
+// its loads in its link's coordinates directly (half_space_loads(): the
+// half-space turned into the link, nothing turned back). A scene without
+// force elements has none of this.
 #pragma once
 #include <array>
 #include <vector>
@@ -131,6 +134,33 @@ FLANGE_INLINE frame_kinematics<T> frame_from_link(const S& scene, const link_pos
   return f;
 }
 
+/// Whether force element C meets a half-space at rest in the World: a
+/// Contact whose shape b is a half-space, its frame_b on the World.
+template <class S, int C>
+constexpr bool meets_resting_half_space() {
+  using Comp = typename S::template component_type<C>;
+  if constexpr (requires { Comp::against_half_space; }) return Comp::against_half_space && force_links<S, C>()[1] == 0;
+  else return false;
+}
+
+/// What force element C (meets_resting_half_space) exerts on frame_a's link
+/// L, added to its loads f, n: the half-space in world coordinates, turned
+/// into the link's with its velocity.
+template <class S, int C, class T>
+FLANGE_INLINE void resting_half_space_loads(const S& scene, const link_pose<T>& L, Vec3<T>& f, Vec3<T>& n) {
+  constexpr int set_a = S::topology.set_of[S::table.frame_base[C]], set_b = S::topology.set_of[S::table.frame_base[C] + 1];
+  const auto& c = scene.template component<C>();
+  const auto& plane = c.geometry().b;
+  Vec3d n_w = plane.n;  // {x : n_w·x ≤ o_w}, world coordinates
+  if constexpr (set_rotation_kind<S>(set_b) != -2) n_w = scene.model().set_rotation[set_b].transpose() * plane.n;
+  const double o_w = plane.offset + n_w.dot(scene.model().set_offset[set_b]);
+  const Vec3<T> n_L = L.R * n_w.template cast<T>();
+  const Vec3<T> v_L = L.R * L.v;
+  const T h = n_w.template cast<T>().dot(L.r) - T(o_w);
+  c.template half_space_loads<(set_rotation_kind<S>(set_a) != -2)>(n_L, h, v_L, L.w, scene.model().set_offset[set_a],
+                                                                    scene.model().set_rotation[set_a], f, n);
+}
+
 /// The loads of the scene's force elements on each link. Only the links
 /// load_flags mark are written. motions: the algorithm's (algebra A) link
 /// motions; pose_motions: spatial motions with rotations, used when a pose
@@ -149,7 +179,10 @@ FLANGE_INLINE void gather_external(const S& scene, const T& t, const state_of<T>
       (
           [&]() FLANGE_INLINE_LAMBDA {
             using Comp = typename S::template component_type<C>;
-            if constexpr (Comp::kind == role::force && force_acts<S, C>()) {
+            if constexpr (meets_resting_half_space<S, C>()) {
+              constexpr int l = force_links<S, C>()[0];
+              resting_half_space_loads<S, C>(scene, lk[l], f_ext[l], n_ext[l]);
+            } else if constexpr (Comp::kind == role::force && force_acts<S, C>()) {
               constexpr int nf = int(Comp::frames.size());
               constexpr auto links = force_links<S, C>();
               std::array<frame_kinematics<T>, nf> fk;

@@ -169,7 +169,6 @@ class Contact {
   template <class T>
   [[nodiscard]] FLANGE_INLINE detail::contact_point<T> evaluate(int i, const frame_kinematics<T>& a,
                                                   const frame_kinematics<T>& b) const {
-    using std::sqrt;
     detail::contact_point<T> cp;
     const auto o = geometry_.overlap(i, a, b);
     const Vec3<T>& N = o.N;
@@ -180,34 +179,51 @@ class Contact {
     cp.depth = o.depth;
     // The middle of the overlap, moved toward the softer side.
     cp.point = o.surface - (T(s_) * cp.depth) * N;
-    // The velocity of b relative to a at that point: δ̇ along N, the slip across it.
+    // The velocity of b relative to a at that point.
     // (ω in world coordinates as plain vectors: g++ calls Eigen's cross of a
     // product expression out of line.)
     const Vec3<T> wa = a.R.transpose() * a.w, wb = b.R.transpose() * b.w;
     const Vec3<T> da = cp.point - a.r, db = cp.point - b.r;
     const Vec3<T> va = a.v + wa.cross(da);
     const Vec3<T> vb = b.v + wb.cross(db);
-    const Vec3<T> v = vb - va;
-    cp.depth_rate = v.dot(N);
-    const Vec3<T> vt = v - cp.depth_rate * N;
-    cp.hertz = T(4.0 / 3.0 * k_) * cp.depth * sqrt(T(reff_[i] * k_) * cp.depth);
-    const T f = cp.hertz * (T(1) + T(1.5 * c_) * cp.depth_rate);
-    cp.fn = f > T(0) ? f : T(0);
-    cp.force = cp.fn * N;
-    const T vs2 = vt.squaredNorm();
-    if (vs2 > T(0)) {
-      // f_t/v_s, the factor of the slip vector, without a division by v_s
-      // below v_t (the ramp is v_s/v_t there) and with the two divisions
-      // independent of each other above it.
-      cp.vs = sqrt(vs2);
-      const T r2 = vs2 * T(inv_vt_ * inv_vt_);
-      const T mu = T(mu_d_) + T(2 * (mu_s_ - mu_d_)) / (T(1) + r2);
-      const T per_vs = r2 < T(1) ? mu * T(inv_vt_) : mu / cp.vs;  // ramp·μ(v_s)/v_s
-      const T g = cp.fn * (per_vs + T(mu_v_));
-      cp.ft = g * cp.vs;
-      cp.force += g * vt;
-    }
+    law(i, cp, N, Vec3<T>(vb - va));
     return cp;
+  }
+
+  /// Whether shape b is a half-space: at rest in the World, it is met in the
+  /// coordinates of frame_a's link (half_space_loads).
+  static constexpr bool against_half_space = std::is_same_v<ShapeB, contact_shape::half_space>;
+
+  /// What a half-space at rest in the World exerts on frame_a's link, added
+  /// to f and n (link coordinates, the torque about the link's origin): the
+  /// same law as evaluate's, with no world pose of the points and nothing to
+  /// turn back. n_L: the half-space's outward normal in link coordinates;
+  /// h: the link origin's height above the half-space's surface; v_L, w_L:
+  /// the origin's velocity and ω, link coordinates; the frame sits at p in
+  /// its link, turned by Rs (link into frame coordinates) when Turned.
+  template <bool Turned, class T>
+  FLANGE_INLINE void half_space_loads(const Vec3<T>& n_L, const T& h, const Vec3<T>& v_L, const Vec3<T>& w_L,
+                                      const Vec3d& p, const Mat3d& Rs, Vec3<T>& f, Vec3<T>& n) const
+    requires against_half_space
+  {
+    Vec3<T> F = Vec3<T>::Zero(), N = Vec3<T>::Zero();
+    for (int i = 0; i < M; ++i) {
+      Vec3d c = p;  // the point's sphere centre, link coordinates
+      if constexpr (Turned) c.noalias() += Rs.transpose() * geometry_.center(i);
+      else c += geometry_.center(i);
+      const Vec3<T> cL = c.template cast<T>();
+      const T gap = h + n_L.dot(cL);
+      detail::contact_point<T> cp;
+      cp.depth = T(reff_[i]) - gap;
+      if (!(cp.depth > T(0))) continue;
+      // The contact point from the link's origin, and the ground's velocity relative to it.
+      const Vec3<T> d = cL - (gap + T(s_) * cp.depth) * n_L;
+      law(i, cp, n_L, Vec3<T>(-(v_L + w_L.cross(d))));
+      F += cp.force;
+      N += d.cross(cp.force);
+    }
+    f += F;
+    n += N;
   }
 
   /// The deepest overlap of its points (0 where apart): a breakdown check
@@ -325,6 +341,33 @@ class Contact {
       }
     }
   };
+
+  /// The law at point i of an overlap cp.depth > 0 along N, at the velocity
+  /// v of b relative to a at the contact point (in N's coordinates): cp's
+  /// depth rate, forces and slip.
+  template <class T>
+  FLANGE_INLINE void law(int i, detail::contact_point<T>& cp, const Vec3<T>& N, const Vec3<T>& v) const {
+    using std::sqrt;
+    cp.depth_rate = v.dot(N);
+    const Vec3<T> vt = v - cp.depth_rate * N;
+    cp.hertz = T(4.0 / 3.0 * k_) * cp.depth * sqrt(T(reff_[i] * k_) * cp.depth);
+    const T f = cp.hertz * (T(1) + T(1.5 * c_) * cp.depth_rate);
+    cp.fn = f > T(0) ? f : T(0);
+    cp.force = cp.fn * N;
+    const T vs2 = vt.squaredNorm();
+    if (vs2 > T(0)) {
+      // f_t/v_s, the factor of the slip vector, without a division by v_s
+      // below v_t (the ramp is v_s/v_t there) and with the two divisions
+      // independent of each other above it.
+      cp.vs = sqrt(vs2);
+      const T r2 = vs2 * T(inv_vt_ * inv_vt_);
+      const T mu = T(mu_d_) + T(2 * (mu_s_ - mu_d_)) / (T(1) + r2);
+      const T per_vs = r2 < T(1) ? mu * T(inv_vt_) : mu / cp.vs;  // ramp·μ(v_s)/v_s
+      const T g = cp.fn * (per_vs + T(mu_v_));
+      cp.ft = g * cp.vs;
+      cp.force += g * vt;
+    }
+  }
 
   void check_material(const char* which, const contact_material& m) const {
     const std::pair<const char*, double> fields[] = {{"stiffness", m.stiffness},

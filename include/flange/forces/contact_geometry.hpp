@@ -17,6 +17,9 @@
 //   sphere–half_space, sphere–sphere, sphere–box  one point
 //   capsule–half_space                            two: the ends' spheres
 //   box–half_space                                eight: the corners' spheres of radius ρ
+// A pair against a half-space also gives each point's sphere centre in
+// frame_a coordinates (center(i)), so that a half-space at rest in the World
+// can be met in the coordinates of frame_a's link (contact.hpp).
 //
 // Against a half-space a box touches with its corners' spheres, so a face
 // resting on the ground stands on its four corners; a capsule lying on the
@@ -178,6 +181,7 @@ struct contact_pair<contact_shape::sphere, contact_shape::half_space> {
   contact_shape::half_space b;
   [[nodiscard]] double radius(int) const { return a.radius; }
   [[nodiscard]] double size() const { return a.radius; }
+  [[nodiscard]] Vec3d center(int) const { return Vec3d::Zero(); }
   template <class T>
   [[nodiscard]] FLANGE_INLINE contact_overlap<T> overlap(int, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
     return sphere_half_space(ka.r, a.radius, b, kb);
@@ -213,10 +217,11 @@ struct contact_pair<contact_shape::capsule, contact_shape::half_space> {
   contact_shape::half_space b;
   [[nodiscard]] double radius(int) const { return a.radius; }
   [[nodiscard]] double size() const { return a.radius; }
+  /// End i's sphere centre in frame_a: i = 0 at −half_length along the axis.
+  [[nodiscard]] Vec3d center(int i) const { return a.center + (i == 0 ? -a.half_length : a.half_length) * a.axis; }
   template <class T>
   [[nodiscard]] FLANGE_INLINE contact_overlap<T> overlap(int i, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
-    const Vec3d end = a.center + (i == 0 ? -a.half_length : a.half_length) * a.axis;
-    return sphere_half_space(Vec3<T>(ka.r + ka.R.transpose() * end.template cast<T>()), a.radius, b, kb);
+    return sphere_half_space(Vec3<T>(ka.r + ka.R.transpose() * center(i).template cast<T>()), a.radius, b, kb);
   }
 };
 
@@ -228,7 +233,7 @@ struct contact_pair<contact_shape::box, contact_shape::half_space> {
   contact_shape::half_space b;
   /// Corner i's sphere centre in frame_a: bit 0, 1, 2 of i give the sign
   /// (clear −, set +) along the box's first, second, third axis.
-  [[nodiscard]] Vec3d corner(int i) const {
+  [[nodiscard]] Vec3d center(int i) const {
     const Vec3d h = a.half_extents - Vec3d::Constant(a.corner_radius);
     const Vec3d s((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z());
     return a.center + a.axes.transpose() * s;
@@ -237,7 +242,7 @@ struct contact_pair<contact_shape::box, contact_shape::half_space> {
   [[nodiscard]] double size() const { return a.half_extents.minCoeff(); }
   template <class T>
   [[nodiscard]] FLANGE_INLINE contact_overlap<T> overlap(int i, const frame_kinematics<T>& ka, const frame_kinematics<T>& kb) const {
-    return sphere_half_space(Vec3<T>(ka.r + ka.R.transpose() * corner(i).template cast<T>()), a.corner_radius, b, kb);
+    return sphere_half_space(Vec3<T>(ka.r + ka.R.transpose() * center(i).template cast<T>()), a.corner_radius, b, kb);
   }
 };
 
