@@ -106,7 +106,7 @@ auto link_to_world(const M& motions, const V& v) {
 
 /// The frame of component C's k-th frame, from its link's world pose.
 template <class S, int C, int K, class T>
-FLANGE_INLINE frame_kinematics<T> frame_from_link(const S& scene, const link_pose<T>& L) {
+FLANGE_INLINE frame_kinematics<T> frame_from_link(const S& scene, const link_pose<T, velocity_in::link>& L) {
   constexpr int set = S::topology.set_of[S::table.frame_base[C] + K];
   constexpr bool on_world = force_links<S, C>()[K] == 0;
   constexpr bool turned = set_rotation_kind<S>(set) != -2;  // a FixedRotation (or an axis frame) on the way
@@ -147,7 +147,8 @@ constexpr bool meets_resting_half_space() {
 /// L, added to its loads f, n: the half-space in world coordinates, turned
 /// into the link's with its velocity.
 template <class S, int C, class T>
-FLANGE_INLINE void resting_half_space_loads(const S& scene, const link_pose<T>& L, Vec3<T>& f, Vec3<T>& n) {
+FLANGE_INLINE void resting_half_space_loads(const S& scene, const link_pose<T, velocity_in::link>& L, Vec3<T>& f,
+                                            Vec3<T>& n) {
   constexpr int set_a = S::topology.set_of[S::table.frame_base[C]], set_b = S::topology.set_of[S::table.frame_base[C] + 1];
   const auto& c = scene.template component<C>();
   const auto& plane = c.geometry().b;
@@ -155,9 +156,8 @@ FLANGE_INLINE void resting_half_space_loads(const S& scene, const link_pose<T>& 
   if constexpr (set_rotation_kind<S>(set_b) != -2) n_w = scene.model().set_rotation[set_b].transpose() * plane.n;
   const double o_w = plane.offset + n_w.dot(scene.model().set_offset[set_b]);
   const Vec3<T> n_L = L.R * n_w.template cast<T>();
-  const Vec3<T> v_L = L.R * L.v;
   const T h = n_w.template cast<T>().dot(L.r) - T(o_w);
-  c.template half_space_loads<(set_rotation_kind<S>(set_a) != -2)>(n_L, h, v_L, L.w, scene.model().set_offset[set_a],
+  c.template half_space_loads<(set_rotation_kind<S>(set_a) != -2)>(n_L, h, L.v, L.w, scene.model().set_offset[set_a],
                                                                     scene.model().set_rotation[set_a], f, n);
 }
 
@@ -174,7 +174,7 @@ FLANGE_INLINE void gather_external(const S& scene, const T& t, const state_of<T>
     if (F.force[L]) f_ext[L].setZero();
   }
   if constexpr (has_motion_forces<S>()) {
-    const auto lk = link_poses<S, T, loaded_links<S>>(pose_motions, x.v_);
+    const auto lk = link_poses<S, T, loaded_links<S>, velocity_in::link>(pose_motions, x.v_);
     [&]<int... C>(std::integer_sequence<int, C...>) FLANGE_INLINE_LAMBDA {
       (
           [&]() FLANGE_INLINE_LAMBDA {

@@ -68,21 +68,27 @@ FLANGE_INLINE auto forward_step(const K& P, const M& m, const V& v, const VD& vd
 
 // ------------------------------------------------------------ world poses
 
+/// Where a link pose gives its origin's velocity: in world coordinates
+/// (recovery, energies, loop constraints), or in the link's own (force
+/// elements: the pass then turns it by each joint's sparse E, not by the
+/// dense world rotation, and a half-space meets the link in its coordinates).
+enum class velocity_in { world, link };
+
 /// A link's pose and motion in the world, dense: what force elements between
 /// frames and recovery need (the recursive algorithms themselves do not).
-template <class T>
+template <class T, velocity_in V = velocity_in::world>
 struct link_pose {
   Mat3<T> R;  ///< rotates world into link coordinates
   Vec3<T> r;  ///< origin, world coordinates
-  Vec3<T> v;  ///< origin's velocity, world coordinates
+  Vec3<T> v;  ///< origin's velocity, world coordinates (link coordinates when V is link)
   Vec3<T> w;  ///< ω, link coordinates
 };
 
 /// A link pose's rotation in the form the scene's type allows: about axis K
 /// when K ≥ 0 (a planar scene, where every link turns about K: algebra.hpp),
 /// as its cosine and sine; dense otherwise.
-template <int K, class T>
-FLANGE_INLINE decltype(auto) typed_rotation(const link_pose<T>& P) {
+template <int K, class T, velocity_in V>
+FLANGE_INLINE decltype(auto) typed_rotation(const link_pose<T, V>& P) {
   if constexpr (K >= 0) {
     constexpr int j = (K + 1) % 3, k = (K + 2) % 3;
     return coordinate_rotation<T, K>{P.R(j, j), P.R(j, k)};
@@ -113,26 +119,28 @@ struct all_links {
 
 /// The pose pass: R, r, ṙ and ω of every link (link 0 is the World); only
 /// the links Keep::value marks are written out (the others pass theirs down).
-template <class S, class T, class Motions, class Keep>
+template <class S, class T, class Motions, class Keep, velocity_in V>
 struct pose_pass : down_only_walk {
+  using pose = link_pose<T, V>;
   const Motions& motions;
   const T* v;
-  std::array<link_pose<T>, S::tree.n_links>& out;
+  std::array<pose, S::tree.n_links>& out;
 
   template <int L>
-  nothing at(const link_pose<T>& d) {
+  nothing at(const pose& d) {
     if constexpr (Keep::value[L]) out[L] = d;
     return {};
   }
   template <int L, int C>
-  link_pose<T> down(const link_pose<T>& P) {
+  pose down(const pose& P) {
     const auto& m = std::get<C - 1>(motions);
     const T* vc = v + link_info<S, C>::v;
-    link_pose<T> c;
+    pose c;
     if constexpr (L == 0) {  // on the World: R_P = 1, r_P = ṙ_P = ω_P = 0
       c.R = to_matrix<T>(m.E());
       c.r = m.p.dense();
-      c.v = m.pd(vc).dense();
+      if constexpr (V == velocity_in::link) c.v = rot(m.E(), m.pd(vc)).dense();
+      else c.v = m.pd(vc).dense();
       c.w = m.w(vc).dense();
     } else {
       // Each product in its sparse form (a revolute about a coordinate axis
@@ -143,7 +151,8 @@ struct pose_pass : down_only_walk {
       const auto& R = typed_rotation<K>(P);
       const auto w = typed_angular<K>(P.w);
       c.r = P.r + rot_t(R, m.p).dense();
-      c.v = P.v + rot_t(R, cross(w, m.p) + m.pd(vc)).dense();
+      if constexpr (V == velocity_in::link) c.v = rot(m.E(), to_svec(Vec3<T>(P.v + (cross(w, m.p) + m.pd(vc)).dense()))).dense();
+      else c.v = P.v + rot_t(R, cross(w, m.p) + m.pd(vc)).dense();
       c.w = rot(m.E(), w).dense() + m.w(vc).dense();
     }
     return c;
@@ -151,12 +160,13 @@ struct pose_pass : down_only_walk {
 };
 
 /// World poses and velocities of the links Keep::value marks (the others are
-/// left unset) at (q, v); motions in the spatial algebra.
-template <class S, class T, class Keep = all_links<S>, class Motions>
-FLANGE_INLINE std::array<link_pose<T>, S::tree.n_links> link_poses(const Motions& motions, const T* v) {
-  std::array<link_pose<T>, S::tree.n_links> out;
-  pose_pass<S, T, Motions, Keep> ctx{{}, motions, v, out};
-  walk<S, 0>(ctx, link_pose<T>{Mat3<T>::Identity(), Vec3<T>::Zero(), Vec3<T>::Zero(), Vec3<T>::Zero()});
+/// left unset) at (q, v), the velocities in V's coordinates; motions in the
+/// spatial algebra.
+template <class S, class T, class Keep = all_links<S>, velocity_in V = velocity_in::world, class Motions>
+FLANGE_INLINE std::array<link_pose<T, V>, S::tree.n_links> link_poses(const Motions& motions, const T* v) {
+  std::array<link_pose<T, V>, S::tree.n_links> out;
+  pose_pass<S, T, Motions, Keep, V> ctx{{}, motions, v, out};
+  walk<S, 0>(ctx, link_pose<T, V>{Mat3<T>::Identity(), Vec3<T>::Zero(), Vec3<T>::Zero(), Vec3<T>::Zero()});
   return out;
 }
 
@@ -202,8 +212,8 @@ void link_accelerations(const Motions& motions, const T* v, const VD& vdot, cons
 /// through these (recovery, energies, force elements, loop constraints).
 /// K ≥ 0: the scene is planar about axis K (typed_rotation), which spares
 /// the arithmetic out of the plane.
-template <int K = -1, class T>
-FLANGE_INLINE Vec3<T> point_position(const link_pose<T>& L, const Vec3<T>& p) {
+template <int K = -1, class T, velocity_in V>
+FLANGE_INLINE Vec3<T> point_position(const link_pose<T, V>& L, const Vec3<T>& p) {
   if constexpr (K >= 0) return L.r + rot_t(typed_rotation<K>(L), to_svec(p)).dense();
   else return L.r + L.R.transpose() * p;
 }
@@ -211,6 +221,11 @@ template <int K = -1, class T>
 FLANGE_INLINE Vec3<T> point_velocity(const link_pose<T>& L, const Vec3<T>& p) {
   if constexpr (K >= 0) return L.v + rot_t(typed_rotation<K>(L), cross(typed_angular<K>(L.w), to_svec(p))).dense();
   else return L.v + L.R.transpose() * L.w.cross(p);
+}
+/// The same from a pose with its velocity in link coordinates.
+template <class T>
+FLANGE_INLINE Vec3<T> point_velocity(const link_pose<T, velocity_in::link>& L, const Vec3<T>& p) {
+  return L.R.transpose() * (L.v + L.w.cross(p));
 }
 /// An angular velocity or acceleration w in link coordinates, in the world's.
 template <int K = -1, class T>

@@ -60,7 +60,7 @@ void check_contact_depths(const S& scene, const State& x, double t, bool at_star
     for (int i = 0; i < S::n_q; ++i) q[i] = x[i];
     for (int i = 0; i < S::n_v; ++i) v[i] = x[S::n_q + i];
     const auto motions = link_motions<spatial_algebra, double, true>(scene, q.data());
-    const auto lk = link_poses<S, double, contact_links<S>>(motions, v.data());
+    const auto lk = link_poses<S, double, contact_links<S>, velocity_in::link>(motions, v.data());
     [&]<int... C>(std::integer_sequence<int, C...>) {
       (
           [&] {
