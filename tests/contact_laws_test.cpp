@@ -36,6 +36,14 @@ int touching(const S& s, unsigned seed) {
   }
   return n;
 }
+
+/// The laws hold to round-off (as for the random trees, tree_test.cpp:
+/// amplified by the mass matrix's conditioning).
+void laws_hold(const test::law_errors& e) {
+  CHECK(e.algorithms <= 1e-10);
+  CHECK(e.residual <= 1e-12);
+  CHECK(e.power <= 1e-10);
+}
 }  // namespace
 
 TEST_CASE("laws with contacts: a quadruped on sphere feet and a box belly, under PD drives") {
@@ -46,11 +54,7 @@ TEST_CASE("laws with contacts: a quadruped on sphere feet and a box belly, under
                    << feet << ", belly corner 0 in " << belly << " of 20 states");
   CHECK(feet > 0);
   CHECK(belly > 0);
-  // As for the random trees (tree_test.cpp): round-off, amplified by the
-  // mass matrix's conditioning.
-  CHECK(e.algorithms <= 1e-10);
-  CHECK(e.residual <= 1e-12);
-  CHECK(e.power <= 1e-10);
+  laws_hold(e);
 }
 
 TEST_CASE("laws with contacts: a capsule on the ground and a ball on a free box") {
@@ -63,9 +67,7 @@ TEST_CASE("laws with contacts: a capsule on the ground and a ball on a free box"
   CHECK(rod > 0);
   CHECK(crate > 0);
   CHECK(ball > 0);
-  CHECK(e.algorithms <= 1e-10);
-  CHECK(e.residual <= 1e-12);
-  CHECK(e.power <= 1e-10);
+  laws_hold(e);
 }
 
 TEST_CASE("laws with contacts: shapes at turned frames against a turned, moved ground") {
@@ -100,7 +102,5 @@ TEST_CASE("laws with contacts: shapes at turned frames against a turned, moved g
                    << rod << ", " << paddle << " of 20 states");
   CHECK(rod > 0);
   CHECK(paddle > 0);
-  CHECK(e.algorithms <= 1e-10);
-  CHECK(e.residual <= 1e-12);
-  CHECK(e.power <= 1e-10);
+  laws_hold(e);
 }
