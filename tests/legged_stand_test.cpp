@@ -62,3 +62,16 @@ TEST_CASE("a quadruped whose drives have zero gains collapses onto its belly and
   CHECK(x3[1] > -params.ground_depth);                               // its centre above the ground
   CHECK(x3[1] - params.belly.y() < -params.ground_depth + 1e-3);     // its belly on it
 }
+
+TEST_CASE("a diverged state too large for double's products is reported as overflowed, not as a singular mass matrix") {
+  // A floating base's quaternion at 1e200: finite, but its squares
+  // overflow, and the pivots come out NaN (as explicit Euler's blown-up
+  // quadruped did in the work-precision study).
+  const auto robot = models::legged<1, 1>();
+  decltype(robot)::state_type x{}, dx;
+  x[3] = 1e200;
+  x[6] = 1e200;
+  using Catch::Matchers::Contains;
+  CHECK_THROWS_WITH(robot(x, dx, 0.5), Contains("the state overflowed at t = 0.5") && Contains("diverged") &&
+                                           !Contains("singular mass matrix"));
+}

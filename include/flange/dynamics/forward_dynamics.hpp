@@ -70,6 +70,13 @@ template <class S, class T>
                                   "stepper's stability, or an input that returned NaN)"),
                            static_cast<double>(t), state_values(q, S::n_q, v, S::n_v), "the state is not finite");
   const double d = static_cast<double>(p.d), scale = static_cast<double>(p.scale);
+  if (!std::isfinite(d) || !std::isfinite(scale))  // a finite state too large for its products (q² overflows)
+    throw simulation_error(concat("flange: the state overflowed at t = ", static_cast<double>(t), ", ",
+                                  describe_state(q, S::n_q, v, S::n_v),
+                                  ": it is finite, but too large for the dynamics' products in double (the mass "
+                                  "matrix's pivot came out ", d, "): the integration diverged before this "
+                                  "evaluation (a step too large for the stepper's stability)"),
+                           static_cast<double>(t), state_values(q, S::n_q, v, S::n_v), "the state overflowed");
   const auto [joint, k] = rate_owner<S>(p.index);
   const std::string why =
       scale > 0 ? concat("its pivot ", d, " is ", d / scale, " of the inertia it moves (", scale,
