@@ -149,7 +149,8 @@ constexpr bool meets_resting_half_space() {
 template <class S, int C, class T>
 FLANGE_INLINE void resting_half_space_loads(const S& scene, const link_pose<T, velocity_in::link>& L, Vec3<T>& f,
                                             Vec3<T>& n) {
-  constexpr int set_a = S::topology.set_of[S::table.frame_base[C]], set_b = S::topology.set_of[S::table.frame_base[C] + 1];
+  constexpr int set_a = S::topology.set_of[S::table.frame_base[C]];
+  constexpr int set_b = S::topology.set_of[S::table.frame_base[C] + 1];
   const auto& c = scene.template component<C>();
   const auto& plane = c.geometry().b;
   Vec3d n_w = plane.n;  // {x : n_w·x ≤ o_w}, world coordinates

@@ -151,8 +151,10 @@ struct pose_pass : down_only_walk {
       const auto& R = typed_rotation<K>(P);
       const auto w = typed_angular<K>(P.w);
       c.r = P.r + rot_t(R, m.p).dense();
-      if constexpr (V == velocity_in::link) c.v = rot(m.E(), to_svec(Vec3<T>(P.v + (cross(w, m.p) + m.pd(vc)).dense()))).dense();
-      else c.v = P.v + rot_t(R, cross(w, m.p) + m.pd(vc)).dense();
+      if constexpr (V == velocity_in::link)
+        c.v = rot(m.E(), to_svec(Vec3<T>(P.v + (cross(w, m.p) + m.pd(vc)).dense()))).dense();
+      else
+        c.v = P.v + rot_t(R, cross(w, m.p) + m.pd(vc)).dense();
       c.w = rot(m.E(), w).dense() + m.w(vc).dense();
     }
     return c;
