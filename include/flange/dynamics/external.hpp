@@ -24,6 +24,13 @@
 
 namespace flange::detail {
 
+/// The connection set of component C's K-th frame, and whether the frame is
+/// turned against its link (a FixedRotation or an axis frame on the way).
+template <class S, int C, int K>
+inline constexpr int frame_set = S::topology.set_of[S::table.frame_base[C] + K];
+template <class S, int C, int K>
+inline constexpr bool frame_turned = set_rotation_kind<S>(frame_set<S, C, K>) != -2;
+
 /// The links a force element's frames sit on, frame by frame (0: the World's).
 /// A one-frame element (WorldForce, WorldTorque) takes its reaction from the World.
 template <class S, int C>
@@ -107,9 +114,9 @@ auto link_to_world(const M& motions, const V& v) {
 /// The frame of component C's k-th frame, from its link's world pose.
 template <class S, int C, int K, class T>
 FLANGE_INLINE frame_kinematics<T> frame_from_link(const S& scene, const link_pose<T, velocity_in::link>& L) {
-  constexpr int set = S::topology.set_of[S::table.frame_base[C] + K];
+  constexpr int set = frame_set<S, C, K>;
   constexpr bool on_world = force_links<S, C>()[K] == 0;
-  constexpr bool turned = set_rotation_kind<S>(set) != -2;  // a FixedRotation (or an axis frame) on the way
+  constexpr bool turned = frame_turned<S, C, K>;
   const Vec3<T> p = scene.model().set_offset[set].template cast<T>();
   frame_kinematics<T> f;
   f.a = f.wd = Vec3<T>::Zero();
@@ -149,17 +156,16 @@ constexpr bool meets_resting_half_space() {
 template <class S, int C, class T>
 FLANGE_INLINE void resting_half_space_loads(const S& scene, const link_pose<T, velocity_in::link>& L, Vec3<T>& f,
                                             Vec3<T>& n) {
-  constexpr int set_a = S::topology.set_of[S::table.frame_base[C]];
-  constexpr int set_b = S::topology.set_of[S::table.frame_base[C] + 1];
+  constexpr int set_a = frame_set<S, C, 0>, set_b = frame_set<S, C, 1>;
   const auto& c = scene.template component<C>();
   const auto& plane = c.geometry().b;
   Vec3d n_w = plane.n;  // {x : n_w·x ≤ o_w}, world coordinates
-  if constexpr (set_rotation_kind<S>(set_b) != -2) n_w = scene.model().set_rotation[set_b].transpose() * plane.n;
+  if constexpr (frame_turned<S, C, 1>) n_w = scene.model().set_rotation[set_b].transpose() * plane.n;
   const double o_w = plane.offset + n_w.dot(scene.model().set_offset[set_b]);
   const Vec3<T> n_L = L.R * n_w.template cast<T>();
   const T h = n_w.template cast<T>().dot(L.r) - T(o_w);
-  c.template half_space_loads<(set_rotation_kind<S>(set_a) != -2)>(n_L, h, L.v, L.w, scene.model().set_offset[set_a],
-                                                                    scene.model().set_rotation[set_a], f, n);
+  c.template half_space_loads<frame_turned<S, C, 0>>(n_L, h, L.v, L.w, scene.model().set_offset[set_a],
+                                                     scene.model().set_rotation[set_a], f, n);
 }
 
 /// The loads of the scene's force elements on each link. Only the links
@@ -191,7 +197,7 @@ FLANGE_INLINE void gather_external(const S& scene, const T& t, const state_of<T>
               static_for<nf>([&](auto k) FLANGE_INLINE_LAMBDA {
                 constexpr int K = decltype(k)::value;
                 fk[K] = frame_from_link<S, C, K>(scene, lk[links[K]]);
-                p[K] = scene.model().set_offset[S::topology.set_of[S::table.frame_base[C] + K]].template cast<T>();
+                p[K] = scene.model().set_offset[frame_set<S, C, K>].template cast<T>();
               });
               std::array<wrench<T>, nf> on;
               scene.template component<C>().wrenches(t, x, fk.data(), on.data());
@@ -221,7 +227,7 @@ FLANGE_INLINE void gather_external(const S& scene, const T& t, const state_of<T>
               // A pure torque: M_ext (frame_a coordinates) acts on frame_b's
               // side, −M_ext on frame_a's; a frame turned against its link
               // (FixedRotation) first turns it into link coordinates.
-              constexpr int set_a = S::topology.set_of[S::table.frame_base[C]];
+              constexpr int set_a = frame_set<S, C, 0>;
               const auto Ra = set_rotation<A, T, S, set_a>(scene);
               const auto Mt = rot_t(Ra, angular<A, T>(scene.template component<C>().torque(t, x)));
               if constexpr (lb != 0) {
