@@ -139,6 +139,8 @@ class Contact {
       geometry_ = {p.a, p.b};
       detail::check_pair(name.view(), geometry_);
       for (int i = 0; i < M; ++i) reff_[i] = geometry_.radius(i);
+      if constexpr (against_half_space)
+        for (int i = 0; i < M; ++i) center_[i] = geometry_.center(i);
     } else {
       (void)sizeof(diagnostic::contact_pair_not_supported<ShapeA, ShapeB>);
     }
@@ -209,8 +211,8 @@ class Contact {
     Vec3<T> F = Vec3<T>::Zero(), N = Vec3<T>::Zero();
     for (int i = 0; i < M; ++i) {
       Vec3d c = p;  // the point's sphere centre, link coordinates
-      if constexpr (Turned) c.noalias() += Rs.transpose() * geometry_.center(i);
-      else c += geometry_.center(i);
+      if constexpr (Turned) c.noalias() += Rs.transpose() * center_[i];
+      else c += center_[i];
       const Vec3<T> cL = c.template cast<T>();
       const T gap = h + n_L.dot(cL);
       detail::contact_point<T> cp;
@@ -387,6 +389,8 @@ class Contact {
 
   pair_type geometry_{};
   std::array<double, M> reff_{};
+  /// Against a half-space: each point's sphere centre in frame_a, computed once.
+  std::array<Vec3d, std::is_same_v<ShapeB, contact_shape::half_space> ? M : 0> center_{};
   double s_ = 0.5, k_ = 0, c_ = 0, mu_s_ = 0, mu_d_ = 0, mu_v_ = 0, inv_vt_ = 0;
 };
 
