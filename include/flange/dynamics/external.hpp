@@ -176,11 +176,15 @@ template <class A, class S, class T, class M, class PM>
 FLANGE_INLINE void gather_external(const S& scene, const T& t, const state_of<T> auto& x, const M& motions, const PM& pose_motions,
                      link_loads<S, T>& n_ext, link_loads<S, T>& f_ext) {
   constexpr auto F = load_flags<S>::value;
-  for (int L = 0; L < S::tree.n_links; ++L) {
-    if (F.torque[L]) n_ext[L].setZero();
-    if (F.force[L]) f_ext[L].setZero();
-  }
   if constexpr (has_motion_forces<S>()) {
+    // These sums start from −0, not +0: x + (−0) is x for every x, so the
+    // compiler drops the first element's addition (x + (+0) is not x when x
+    // is −0, so that one it must do), which stood in the way from a contact
+    // force to the accelerations.
+    for (int L = 0; L < S::tree.n_links; ++L) {
+      if (F.torque[L]) n_ext[L].setConstant(T(-0.0));
+      if (F.force[L]) f_ext[L].setConstant(T(-0.0));
+    }
     const auto lk = link_poses<S, T, loaded_links<S>, velocity_in::link>(pose_motions, x.v_);
     [&]<int... C>(std::integer_sequence<int, C...>) FLANGE_INLINE_LAMBDA {
       (
@@ -217,6 +221,10 @@ FLANGE_INLINE void gather_external(const S& scene, const T& t, const state_of<T>
     }(std::make_integer_sequence<int, S::n_components>{});
   } else {
     (void)pose_motions;
+    for (int L = 0; L < S::tree.n_links; ++L) {
+      if (F.torque[L]) n_ext[L].setZero();
+      if (F.force[L]) f_ext[L].setZero();
+    }
     [&]<int... C>(std::integer_sequence<int, C...>) FLANGE_INLINE_LAMBDA {
       (
           [&]() FLANGE_INLINE_LAMBDA {

@@ -188,7 +188,8 @@ class Contact {
     const Vec3<T> da = cp.point - a.r, db = cp.point - b.r;
     const Vec3<T> va = a.v + wa.cross(da);
     const Vec3<T> vb = b.v + wb.cross(db);
-    law(i, cp, N, Vec3<T>(vb - va));
+    const Vec3<T> v = vb - va;
+    law(i, cp, N, v, T(v.dot(N)));
     return cp;
   }
 
@@ -208,7 +209,6 @@ class Contact {
                                       const Vec3d& p, const Mat3d& Rs, Vec3<T>& f, Vec3<T>& n) const
     requires against_half_space
   {
-    Vec3<T> F = Vec3<T>::Zero(), N = Vec3<T>::Zero();
     for (int i = 0; i < M; ++i) {
       Vec3d c = p;  // the point's sphere centre, link coordinates
       if constexpr (Turned) c.noalias() += Rs.transpose() * center_[i];
@@ -218,14 +218,18 @@ class Contact {
       detail::contact_point<T> cp;
       cp.depth = T(reff_[i]) - gap;
       if (!(cp.depth > T(0))) continue;
-      // The contact point from the link's origin, and the ground's velocity relative to it.
-      const Vec3<T> d = cL - (gap + T(s_) * cp.depth) * n_L;
-      law(i, cp, n_L, Vec3<T>(-(v_L + w_L.cross(d))));
-      F += cp.force;
-      N += d.cross(cp.force);
+      // The contact point d = c − e·n from the link's origin, and the
+      // ground's velocity relative to it, −(v + ω × d) = e·(ω × n) − (v + ω × c):
+      // written so, the parts that do not wait for the overlap (v + ω × c,
+      // ω × n and the depth rate −(v + ω × c)·n, as (ω × n)·n = 0) are
+      // computed beside it, not after it.
+      const T e = gap + T(s_) * cp.depth;
+      const Vec3<T> d = cL - e * n_L;
+      const Vec3<T> vc = v_L + w_L.cross(cL), wn = w_L.cross(n_L);
+      law(i, cp, n_L, Vec3<T>(e * wn - vc), T(-vc.dot(n_L)));
+      f += cp.force;
+      n += d.cross(cp.force);
     }
-    f += F;
-    n += N;
   }
 
   /// The deepest overlap of its points (0 where apart): a breakdown check
@@ -345,12 +349,14 @@ class Contact {
   };
 
   /// The law at point i of an overlap cp.depth > 0 along N, at the velocity
-  /// v of b relative to a at the contact point (in N's coordinates): cp's
-  /// depth rate, forces and slip.
+  /// v of b relative to a at the contact point (in N's coordinates) whose
+  /// component v·N, the depth rate, the caller gives (in whichever form it
+  /// has it soonest): cp's depth rate, forces and slip.
   template <class T>
-  FLANGE_INLINE void law(int i, detail::contact_point<T>& cp, const Vec3<T>& N, const Vec3<T>& v) const {
+  FLANGE_INLINE void law(int i, detail::contact_point<T>& cp, const Vec3<T>& N, const Vec3<T>& v,
+                         const T& depth_rate) const {
     using std::sqrt;
-    cp.depth_rate = v.dot(N);
+    cp.depth_rate = depth_rate;
     const Vec3<T> vt = v - cp.depth_rate * N;
     cp.hertz = T(4.0 / 3.0 * k_) * cp.depth * sqrt(T(reff_[i] * k_) * cp.depth);
     const T f = cp.hertz * (T(1) + T(1.5 * c_) * cp.depth_rate);
