@@ -17,7 +17,7 @@ work=$(mktemp -d)
 trap 'git -C "$here" worktree remove --force "$work/a" >/dev/null 2>&1 || true; rm -rf "$work"' EXIT
 git -C "$here" worktree add --detach "$work/a" "$rev" >/dev/null  # its errors stay visible
 eigen=$(pkg-config --cflags eigen3 2>/dev/null || echo -I/usr/include/eigen3)
-flags=(-std=c++20 -O3 -DNDEBUG -DEIGEN_UNALIGNED_VECTORIZE=0 "$@")
+flags=(-std=c++20 -O3 -DNDEBUG "$@")
 side() {  # side NAME ROOT
   g++ "${flags[@]}" -Dflange=flange_"$1" -DAB_SIDE="$1" -I"$2/include" -I"$2/benchmarks" $eigen \
     -c "$here/tools/probes/ab_scenes.cpp" -o "$work/$1.o"

@@ -15,7 +15,7 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 exe=$(mktemp)
 trap 'rm -f "$exe"' EXIT
 eigen=$(pkg-config --cflags eigen3 2>/dev/null || echo -I/usr/include/eigen3)
-g++ -std=c++20 -O3 -DNDEBUG -DEIGEN_UNALIGNED_VECTORIZE=0 "$@" -DPROBE_N="$n" -DPROBE_AXES="$axes" -I"$here/include" $eigen \
+g++ -std=c++20 -O3 -DNDEBUG "$@" -DPROBE_N="$n" -DPROBE_AXES="$axes" -I"$here/include" $eigen \
   "$here/tools/probes/chain_derivative.cpp" -o "$exe"
 for alg in ${algs//,/ }; do
   count() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$exe" "$1" "$alg" 2>&1 | awk '/Collected/ { print $4 }'; }

@@ -21,7 +21,7 @@ sizes=("$@")
 [ ${#sizes[@]} -gt 0 ] || sizes=(8 16 32 64 128)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-flags=(-std=c++20 -O3 -DNDEBUG -DEIGEN_UNALIGNED_VECTORIZE=0 -I"$root/include" -I/usr/include/eigen3)
+flags=(-std=c++20 -O3 -DNDEBUG -I"$root/include" -I/usr/include/eigen3)
 csv="$root/build/compile_scaling.csv"
 mkdir -p "$root/build"
 echo "n,seconds,max_rss_mb,front_end_seconds" >"$csv"

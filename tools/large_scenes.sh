@@ -22,7 +22,7 @@ legs=${2:-15}
 shift $(($# < 2 ? $# : 2))
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-flags=(-std=c++20 -O1 -DNDEBUG -DEIGEN_UNALIGNED_VECTORIZE=0 -Wall -Wextra -Wpedantic -I"$root/include" -I"$root/tests" -I/usr/include/eigen3
+flags=(-std=c++20 -O1 -DNDEBUG -Wall -Wextra -Wpedantic -I"$root/include" -I"$root/tests" -I/usr/include/eigen3
        -DFLANGE_LARGE_CHAIN="$chain" -DFLANGE_LARGE_LEGS="$legs" "$@")
 g++ -std=c++20 -O2 -c "$root/tests/main.cpp" -o "$work/main.o" &
 g++ -std=c++20 -O2 -I"$root/include" -I/usr/include/eigen3 -c "$root/tests/allocation_counter.cpp" -o "$work/alloc.o"
