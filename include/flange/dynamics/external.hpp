@@ -11,6 +11,7 @@
 // half-space turned into the link, nothing turned back). A scene without
 // force elements has none of this.
 #pragma once
+#include "flange/math/read_alone.hpp"
 #include <array>
 #include <vector>
 #include <string>
@@ -162,10 +163,24 @@ FLANGE_INLINE void resting_half_space_loads(const S& scene, const link_pose<T, v
   Vec3d n_w = plane.n;  // {x : n_w·x ≤ o_w}, world coordinates
   if constexpr (frame_turned<S, C, 1>) n_w = scene.model().set_rotation[set_b].transpose() * plane.n;
   const double o_w = plane.offset + n_w.dot(scene.model().set_offset[set_b]);
-  const Vec3<T> n_L = L.R * n_w.template cast<T>();
-  const T h = n_w.template cast<T>().dot(L.r) - T(o_w);
-  c.template half_space_loads<frame_turned<S, C, 0>>(n_L, h, L.v, L.w, scene.model().set_offset[set_a],
-                                                     scene.model().set_rotation[set_a], f, n);
+  const auto meet = [&](const Vec3<T>& n_L, const T& h, const Vec3<T>& v, const Vec3<T>& w) FLANGE_INLINE_LAMBDA {
+    c.template half_space_loads<frame_turned<S, C, 0>>(n_L, h, v, w, scene.model().set_offset[set_a],
+                                                       scene.model().set_rotation[set_a], f, n);
+  };
+  if constexpr (S::tree.link_parent[force_links<S, C>()[0]] == 0) {
+    // A link on the World: its pose was written entry by entry moments ago,
+    // by the pose pass's first step, and a 16-byte load of two entries would
+    // wait for both stores to reach the cache. Its r, v and ω are read a
+    // scalar at a time and n_L is formed from scalars (math/read_alone.hpp).
+    // (On deeper links, the quadruped's feet, the scalar reads measured no
+    // faster and cost instructions.)
+    const Vec3<T> r = flange::read_alone(L.r), v = flange::read_alone(L.v), w = flange::read_alone(L.w);
+    Vec3<T> n_L;
+    for (int i = 0; i < 3; ++i) n_L[i] = flange::read_alone(T(L.R(i, 0) * n_w[0] + L.R(i, 1) * n_w[1] + L.R(i, 2) * n_w[2]));
+    meet(n_L, r[0] * n_w[0] + r[1] * n_w[1] + r[2] * n_w[2] - T(o_w), v, w);
+  } else {
+    meet(L.R * n_w.template cast<T>(), n_w.template cast<T>().dot(L.r) - T(o_w), L.v, L.w);
+  }
 }
 
 /// The loads of the scene's force elements on each link. Only the links
