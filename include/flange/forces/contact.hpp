@@ -362,11 +362,13 @@ class Contact {
     const T f = cp.hertz * (T(1) + T(1.5 * c_) * cp.depth_rate);
     cp.fn = f > T(0) ? f : T(0);
     cp.force = cp.fn * N;
-    const T vs2 = vt.squaredNorm();
+    // |v_t|² as |v × N|² (N is a unit vector): it does not wait for the depth
+    // rate, as v_t does, and the friction below waits for it.
+    const T vs2 = v.cross(N).squaredNorm();
     if (vs2 > T(0)) {
       // f_t/v_s, the factor of the slip vector, without a division by v_s
-      // below v_t (the ramp is v_s/v_t there) and with the two divisions
-      // independent of each other above it.
+      // below v_t (the ramp is v_s/v_t there), and above it with v_s's square
+      // root taken beside μ's division.
       cp.vs = sqrt(vs2);
       const T r2 = vs2 * T(inv_vt_ * inv_vt_);
       const T mu = T(mu_d_) + T(2 * (mu_s_ - mu_d_)) / (T(1) + r2);
