@@ -4,7 +4,7 @@
 // (newton_euler.hpp), M the composite-rigid-body mass matrix
 // (mass_matrix.hpp), τ the joints' own generalized forces (inputs and axis
 // laws), and the solve an unrolled LDLᵀ with a relative pivot test (ldlt.hpp);
-// where M does not depend on q (model.hpp, constant_mass_matrix), its
+// where M is constant up to its joints' turns of their rates (model.hpp, folded_mass_matrix), its
 // inverse folded at construction instead.
 //
 // accelerations_newton_euler and accelerations_planar force one algebra, for
@@ -127,21 +127,36 @@ template <class A, class S, class T, class M, class PM>
   } else {
     for (int i = 0; i < N; ++i) r[i] = -b[i];
   }
-  if constexpr (constant_mass_matrix<S>() && epsilon<T>() >= epsilon<double>()) {
-    // M does not depend on q: v̇ = M⁻¹·r with M⁻¹ folded at construction,
-    // block by block (model.hpp). No mass-matrix pass, no division. (Folded
-    // in double: a wider scalar, long double, forms and solves M itself.)
+  if constexpr (folded_mass_matrix<S>() && epsilon<T>() >= epsilon<double>()) {
+    // M is constant up to its joints' turns of their rates: v̇ = M⁻¹·r with
+    // M⁻¹ folded at construction, block by block (model.hpp), and a turned
+    // block's rates turned in and back, Tᵀ·M₀⁻¹·T·r. No mass-matrix pass, no
+    // division. (Folded in double: a wider scalar, long double, forms and
+    // solves M itself.)
     const auto& m = scene.model();
     if (m.mass_pivot.index >= 0) [[unlikely]]
       singular_mass_matrix<S>(pivot_report<T>{m.mass_pivot.index, T(m.mass_pivot.d), T(m.mass_pivot.scale)}, t, q, v);
     for_links<S>([&](auto l) FLANGE_INLINE_LAMBDA {
       constexpr int L = decltype(l)::value;
       using LI = link_info<S, L>;
-      constexpr int o = constant_mass_offset<S, L>();
-      for (int i = 0; i < LI::nv; ++i) {
-        T a = T(m.inverse_mass[o + i * LI::nv]) * r[LI::v];
-        for (int j = 1; j < LI::nv; ++j) a += T(m.inverse_mass[o + i * LI::nv + j]) * r[LI::v + j];
-        vdot[LI::v + i] = a;
+      constexpr int o = folded_mass_offset<S, L>();
+      if constexpr (turned_subspace<typename LI::joint_type>) {
+        const auto& mo = std::get<L - 1>(motions);
+        const std::array<T, LI::nv> rl = mo.turn_rates(r.data() + LI::v);
+        std::array<T, LI::nv> al;
+        for (int i = 0; i < LI::nv; ++i) {
+          T a = T(m.inverse_mass[o + i * LI::nv]) * rl[0];
+          for (int j = 1; j < LI::nv; ++j) a += T(m.inverse_mass[o + i * LI::nv + j]) * rl[j];
+          al[i] = a;
+        }
+        const std::array<T, LI::nv> a = mo.unturn_rates(al.data());
+        for (int i = 0; i < LI::nv; ++i) vdot[LI::v + i] = a[i];
+      } else {
+        for (int i = 0; i < LI::nv; ++i) {
+          T a = T(m.inverse_mass[o + i * LI::nv]) * r[LI::v];
+          for (int j = 1; j < LI::nv; ++j) a += T(m.inverse_mass[o + i * LI::nv + j]) * r[LI::v + j];
+          vdot[LI::v + i] = a;
+        }
       }
     });
   } else {

@@ -165,6 +165,14 @@ struct link_motion {
   FLANGE_INLINE auto col() const {
     return jm.template col<K>();
   }
+  template <class T>
+  FLANGE_INLINE auto turn_rates(const T* r) const {
+    return jm.turn_rates(r);
+  }
+  template <class T>
+  FLANGE_INLINE auto unturn_rates(const T* a) const {
+    return jm.unturn_rates(a);
+  }
 };
 
 /// A link's motion from its joint's motion jm and the rotation Es of what the

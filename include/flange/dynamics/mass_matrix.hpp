@@ -207,9 +207,10 @@ FLANGE_INLINE void mass_matrix(const S& scene, const Motions& motions, MM& M, T*
   walk<S, 0>(ctx, nothing{});
 }
 
-/// Folds a constant M (constant_mass_matrix, model.hpp) into the model at
-/// construction: M from this pass at the neutral configuration (any would
-/// do), factored with the pivot test the derivative uses, and each link's
+/// Folds M (folded_mass_matrix, model.hpp) into the model at construction:
+/// M from this pass at the neutral configuration (where every joint's turn
+/// of its rates is 1; for a fixed subspace any configuration would do),
+/// factored with the pivot test the derivative uses, and each link's
 /// diagonal block of M⁻¹ kept; or, if a pivot fails, that pivot, for the
 /// derivative to report with its time and state.
 template <class S, class Model>
@@ -234,7 +235,7 @@ void fold_mass_matrix(const S& scene, Model& model) {
       std::array<double, N> e{}, x;
       e[LI::v + j] = 1;
       ldlt_solve<N>(M, f, e.data(), x.data(), mass_factor<S>{});
-      for (int i = 0; i < LI::nv; ++i) model.inverse_mass[constant_mass_offset<S, L>() + i * LI::nv + j] = x[LI::v + i];
+      for (int i = 0; i < LI::nv; ++i) model.inverse_mass[folded_mass_offset<S, L>() + i * LI::nv + j] = x[LI::v + i];
     }
   });
 }

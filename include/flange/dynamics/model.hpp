@@ -2,9 +2,9 @@
 // connection set's pose relative to its link's origin (rigid edges folded:
 // FixedTranslation's offset, FixedRotation's rotation), and every link's
 // rigid-body inertia (all the bodies that move with it), and, where the
-// scene's type shows the mass matrix does not depend on q
-// (constant_mass_matrix), its inverse. These are constants of the scene, so
-// the derivative never recomputes them.
+// scene's type shows the mass matrix is constant up to its joints' turns of
+// their rates (folded_mass_matrix), its inverse. These are constants of the
+// scene, so the derivative never recomputes them.
 #pragma once
 #include "flange/detail/inline.hpp"
 #include <algorithm>
@@ -58,35 +58,47 @@ inline constexpr bool fixed_subspace = requires {
   requires J::fixed_subspace;
 };
 
-/// Does M(q) not depend on q? It does not when every joint hangs from the
-/// root link (no joint moves another, and no loop is cut) and every joint's
-/// motion subspace is fixed in its link: M is then block diagonal, each
-/// block Sᵀ·I·S of one link's own inertia. The paper's robot arm is one.
-/// Such an M is inverted once, at construction (fold_mass_matrix,
-/// mass_matrix.hpp), and the derivative multiplies by the inverse.
+/// A joint whose motion subspace is a constant one turned by an orthogonal
+/// T(q) on its rates, S(q) = S₀·T(q) (core/joint.hpp: turned_subspace): a
+/// FreeMotion, whose linear rates are in frame_a's coordinates.
+template <class J>
+inline constexpr bool turned_subspace = requires {
+  requires J::turned_subspace;
+};
+
+/// Is M(q) constant but for its joints' turns of their rates? It is when
+/// every joint hangs from the root link (no joint moves another, and no loop
+/// is cut) and every joint's motion subspace is fixed in its link or turned
+/// (above): M is then block diagonal, each block Sᵀ·I·S of one link's own
+/// inertia, constant, or Tᵀ·M₀·T with M₀ its value at T = 1. The paper's
+/// robot arm is one, and so is a scene of free bodies. Such an M is inverted
+/// once, at construction (fold_mass_matrix, mass_matrix.hpp, at the neutral
+/// configuration, where every T is 1), and the derivative multiplies by the
+/// inverse, M⁻¹ = Tᵀ·M₀⁻¹·T block by block.
 template <class S>
-constexpr bool constant_mass_matrix() {
+constexpr bool folded_mass_matrix() {
   if constexpr (!walkable<S> || S::tree.n_cuts > 0 || S::tree.n_links < 2) {
     return false;
   } else {
     return []<int... L>(std::integer_sequence<int, L...>) {
       return ((S::tree.link_parent[L + 1] == 0 &&
-               fixed_subspace<typename S::template component_type<S::tree.link_joint[L + 1]>>) &&
+               (fixed_subspace<typename S::template component_type<S::tree.link_joint[L + 1]>> ||
+                turned_subspace<typename S::template component_type<S::tree.link_joint[L + 1]>>)) &&
               ...);
     }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
   }
 }
 
-/// Where link L's block of a constant M⁻¹ starts (row-major nv × nv blocks,
+/// Where link L's block of a folded M⁻¹ starts (row-major nv × nv blocks,
 /// links in order); at L = n_links, the storage they need.
 template <class S, int L>
-constexpr int constant_mass_offset() {
+constexpr int folded_mass_offset() {
   int n = 0;
   for (int l = 1; l < L; ++l) n += S::table.nv[S::tree.link_joint[l]] * S::table.nv[S::tree.link_joint[l]];
   return n;
 }
 
-struct no_constant_mass {};
+struct no_folded_mass {};
 struct no_link_turn {};
 struct no_gravity {};
 
@@ -108,11 +120,11 @@ struct dynamics_model {
   [[no_unique_address]] std::conditional_t<Turned, std::array<Mat3d, NL>, no_link_turn> link_turn{};
   /// The same for an aligned link, as R_z(θ₀)·R_x(α).
   [[no_unique_address]] std::conditional_t<Turned, std::array<axis_alignment, NL>, no_link_turn> link_align{};
-  /// A constant M's inverse, link by link (its diagonal blocks), and its
+  /// A folded M's inverse, link by link (its diagonal blocks, at T = 1), and its
   /// failed pivot if it is singular: the derivative reports that with the
   /// time and state of the call, as for any singular M.
-  [[no_unique_address]] std::conditional_t<NB == 0, no_constant_mass, std::array<double, NB>> inverse_mass{};
-  [[no_unique_address]] std::conditional_t<NB == 0, no_constant_mass, pivot_report<double>> mass_pivot{};
+  [[no_unique_address]] std::conditional_t<NB == 0, no_folded_mass, std::array<double, NB>> inverse_mass{};
+  [[no_unique_address]] std::conditional_t<NB == 0, no_folded_mass, pivot_report<double>> mass_pivot{};
 };
 
 /// Whether scene S has gravity; false, not a second error, for a scene
@@ -126,7 +138,7 @@ constexpr bool gravity_in_model() {
 /// The model of scene S.
 template <class S>
 using model_for = dynamics_model<S::tree.n_links, (S::topology.n_sets == 0 ? 1 : S::topology.n_sets),
-                                 constant_mass_matrix<S>() ? constant_mass_offset<S, S::tree.n_links>() : 0,
+                                 folded_mass_matrix<S>() ? folded_mass_offset<S, S::tree.n_links>() : 0,
                                  axis_frames<S>::any, gravity_in_model<S>()>;
 
 template <class S, class F>

@@ -58,6 +58,16 @@ struct free_motion_motion : motion_base<T> {
     if constexpr (K < 3) return motion_pair<zero_vec<T>, dense_vec<T>>{{}, to_svec(Vec3<T>(E.col(K)))};
     else return motion_pair<axial_vec<T, (K - 3)>, zero_vec<T>>{axial<T, (K - 3)>(T(1)), {}};
   }
+  /// T·r and Tᵀ·a for T = diag(E, 1) (core/joint.hpp, turned_subspace): the
+  /// columns are those at E = 1 with the linear rates turned by E.
+  FLANGE_INLINE std::array<T, 6> turn_rates(const T* r) const {
+    const Vec3<T> l = rot(E, to_svec(Vec3<T>(r[0], r[1], r[2]))).dense();
+    return {l(0), l(1), l(2), r[3], r[4], r[5]};
+  }
+  FLANGE_INLINE std::array<T, 6> unturn_rates(const T* a) const {
+    const Vec3<T> l = rot_t(E, to_svec(Vec3<T>(a[0], a[1], a[2]))).dense();
+    return {l(0), l(1), l(2), a[3], a[4], a[5]};
+  }
 };
 }  // namespace detail
 
@@ -76,6 +86,9 @@ class FreeMotion {
   /// Its unit quaternion (x, y, z, w) starts at q[3] (core/joint.hpp: quaternion_joint).
   static constexpr int quaternion_at = 3;
   static constexpr bool reversible = false;
+  /// Its columns are constant but for its linear rates, in frame_a's
+  /// coordinates: S(q) = S₀·diag(E, 1) (core/joint.hpp).
+  static constexpr bool turned_subspace = true;
   static constexpr int planar_normal() { return -1; }
   static constexpr bool moves_in_plane(int) { return false; }
   /// Closing a loop, it leaves everything free: the loop has no constraint.

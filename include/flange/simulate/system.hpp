@@ -40,13 +40,13 @@ class System : public S {
   template <class... A>
   explicit System(std::in_place_t, A&&... components)
       : S(std::in_place, std::forward<A>(components)...), model_(detail::build_model(static_cast<const S&>(*this))) {
-    if constexpr (detail::constant_mass_matrix<S>()) detail::fold_mass_matrix(*this, model_);
+    if constexpr (detail::folded_mass_matrix<S>()) detail::fold_mass_matrix(*this, model_);
   }
 
   /// From a scene of the same components under another name (renamed
   /// below): the scene moved in, the constants computed again.
   System(detail::from_scene_t, S&& scene) : S(std::move(scene)), model_(detail::build_model(static_cast<const S&>(*this))) {
-    if constexpr (detail::constant_mass_matrix<S>()) detail::fold_mass_matrix(*this, model_);
+    if constexpr (detail::folded_mass_matrix<S>()) detail::fold_mass_matrix(*this, model_);
   }
 
   /// Constants the dynamics precompute (link inertias, set poses).
