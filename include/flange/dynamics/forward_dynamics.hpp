@@ -140,23 +140,22 @@ template <class A, class S, class T, class M, class PM>
       constexpr int L = decltype(l)::value;
       using LI = link_info<S, L>;
       constexpr int o = folded_mass_offset<S, L>();
+      const auto times_inverse = [&](const T* in, T* out) FLANGE_INLINE_LAMBDA {
+        for (int i = 0; i < LI::nv; ++i) {
+          T a = T(m.inverse_mass[o + i * LI::nv]) * in[0];
+          for (int j = 1; j < LI::nv; ++j) a += T(m.inverse_mass[o + i * LI::nv + j]) * in[j];
+          out[i] = a;
+        }
+      };
       if constexpr (turned_subspace<typename LI::joint_type>) {
         const auto& mo = std::get<L - 1>(motions);
         const std::array<T, LI::nv> rl = mo.turn_rates(r.data() + LI::v);
         std::array<T, LI::nv> al;
-        for (int i = 0; i < LI::nv; ++i) {
-          T a = T(m.inverse_mass[o + i * LI::nv]) * rl[0];
-          for (int j = 1; j < LI::nv; ++j) a += T(m.inverse_mass[o + i * LI::nv + j]) * rl[j];
-          al[i] = a;
-        }
+        times_inverse(rl.data(), al.data());
         const std::array<T, LI::nv> a = mo.unturn_rates(al.data());
         for (int i = 0; i < LI::nv; ++i) vdot[LI::v + i] = a[i];
       } else {
-        for (int i = 0; i < LI::nv; ++i) {
-          T a = T(m.inverse_mass[o + i * LI::nv]) * r[LI::v];
-          for (int j = 1; j < LI::nv; ++j) a += T(m.inverse_mass[o + i * LI::nv + j]) * r[LI::v + j];
-          vdot[LI::v + i] = a;
-        }
+        times_inverse(r.data() + LI::v, vdot + LI::v);
       }
     });
   } else {
