@@ -362,9 +362,7 @@ class Contact {
     const T f = cp.hertz * (T(1) + T(1.5 * c_) * cp.depth_rate);
     cp.fn = f > T(0) ? f : T(0);
     cp.force = cp.fn * N;
-    // |v_t|² as |v × N|² (N is a unit vector): it does not wait for the depth
-    // rate, as v_t does, and the friction below waits for it.
-    const T vs2 = v.cross(N).squaredNorm();
+    const T vs2 = vt.squaredNorm();
     if (vs2 > T(0)) {
       // f_t/v_s, the factor of the slip vector, without a division by v_s
       // below v_t (the ramp is v_s/v_t there), and above it with v_s's square
