@@ -44,10 +44,10 @@
 //                                matrix (dynamics/model.hpp)
 //   turned_subspace              true when the columns are a constant S₀
 //                                turned by an orthogonal T(q) acting on the
-//                                rates, S(q) = S₀·T(q), with m.turn_rates(r)
-//                                = T·r and m.unturn_rates(a) = Tᵀ·a (a
-//                                FreeMotion, whose linear rates are in
-//                                frame_a's coordinates): its block of M is
+//                                rates, S(q) = S₀·T(q), with m.turn_rates(r,
+//                                out) writing T·r and m.unturn_rates(a, out)
+//                                Tᵀ·a (a FreeMotion, whose linear rates are
+//                                in frame_a's coordinates): its block of M is
 //                                Tᵀ·M₀·T, and folds as M₀
 //   as_cut, cut_state(R, p, w, ṗ, q, v)  what it leaves free when it closes a
 //                                loop (cut_freedom below; without it, it

@@ -149,11 +149,10 @@ template <class A, class S, class T, class M, class PM>
       };
       if constexpr (turned_subspace<typename LI::joint_type>) {
         const auto& mo = std::get<L - 1>(motions);
-        const std::array<T, LI::nv> rl = mo.turn_rates(r.data() + LI::v);
-        std::array<T, LI::nv> al;
+        std::array<T, LI::nv> rl, al;
+        mo.turn_rates(r.data() + LI::v, rl.data());
         times_inverse(rl.data(), al.data());
-        const std::array<T, LI::nv> a = mo.unturn_rates(al.data());
-        for (int i = 0; i < LI::nv; ++i) vdot[LI::v + i] = a[i];
+        mo.unturn_rates(al.data(), vdot + LI::v);
       } else {
         times_inverse(r.data() + LI::v, vdot + LI::v);
       }

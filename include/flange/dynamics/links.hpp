@@ -166,12 +166,12 @@ struct link_motion {
     return jm.template col<K>();
   }
   template <class T>
-  FLANGE_INLINE auto turn_rates(const T* r) const {
-    return jm.turn_rates(r);
+  FLANGE_INLINE void turn_rates(const T* r, T* out) const {
+    jm.turn_rates(r, out);
   }
   template <class T>
-  FLANGE_INLINE auto unturn_rates(const T* a) const {
-    return jm.unturn_rates(a);
+  FLANGE_INLINE void unturn_rates(const T* a, T* out) const {
+    jm.unturn_rates(a, out);
   }
 };
 

@@ -59,14 +59,17 @@ struct free_motion_motion : motion_base<T> {
     else return motion_pair<axial_vec<T, (K - 3)>, zero_vec<T>>{axial<T, (K - 3)>(T(1)), {}};
   }
   /// T·r and Tᵀ·a for T = diag(E, 1) (core/joint.hpp, turned_subspace): the
-  /// columns are those at E = 1 with the linear rates turned by E.
-  FLANGE_INLINE std::array<T, 6> turn_rates(const T* r) const {
-    const Vec3<T> l = rot(E, to_svec(Vec3<T>(r[0], r[1], r[2]))).dense();
-    return {l(0), l(1), l(2), r[3], r[4], r[5]};
+  /// columns are those at E = 1 with the linear rates turned by E. Written
+  /// into out entry by entry, as the next step reads them.
+  FLANGE_INLINE void turn_rates(const T* r, T* out) const {
+    const auto l = rot(E, to_svec(Vec3<T>(r[0], r[1], r[2])));
+    for (int i = 0; i < 3; ++i) out[i] = l.dense()[i];
+    for (int i = 3; i < 6; ++i) out[i] = r[i];
   }
-  FLANGE_INLINE std::array<T, 6> unturn_rates(const T* a) const {
-    const Vec3<T> l = rot_t(E, to_svec(Vec3<T>(a[0], a[1], a[2]))).dense();
-    return {l(0), l(1), l(2), a[3], a[4], a[5]};
+  FLANGE_INLINE void unturn_rates(const T* a, T* out) const {
+    const auto l = rot_t(E, to_svec(Vec3<T>(a[0], a[1], a[2])));
+    for (int i = 0; i < 3; ++i) out[i] = l.dense()[i];
+    for (int i = 3; i < 6; ++i) out[i] = a[i];
   }
 };
 }  // namespace detail
