@@ -17,6 +17,7 @@
 #include <string>
 
 #include "flange/dynamics/external.hpp"
+#include "flange/math/read_alone.hpp"
 #include "flange/dynamics/ldlt.hpp"
 #include "flange/dynamics/loop_solve.hpp"
 #include "flange/dynamics/mass_matrix.hpp"
@@ -120,12 +121,21 @@ template <class A, class S, class T, class M, class PM>
   gather_external<A>(scene, t, x, motions, pose, n_ext, f_ext);
   std::array<T, N> b, r;
   inverse_dynamics<A>(scene, motions, v, no_rates{}, n_ext, f_ext, b.data());
+  // Where M is folded, the product by its inverse follows at once: b, which
+  // the passes have just stored entry by entry, is read a scalar at a time
+  // (math/read_alone.hpp; a free body 32 -> 29 ns). Elsewhere the packed
+  // copy measured faster (a chain of six 129 against 136 ns).
+  constexpr bool alone = folded_mass_matrix<S>();
+  const auto b_at = [&](int i) FLANGE_INLINE_LAMBDA {
+    if constexpr (alone) return flange::read_alone(b[i]);
+    else return b[i];
+  };
   if constexpr (has_joint_forces<S>()) {
     std::array<T, N> tau;
     joint_forces(scene, t, x, tau.data());
-    for (int i = 0; i < N; ++i) r[i] = tau[i] - b[i];
+    for (int i = 0; i < N; ++i) r[i] = tau[i] - b_at(i);
   } else {
-    for (int i = 0; i < N; ++i) r[i] = -b[i];
+    for (int i = 0; i < N; ++i) r[i] = -b_at(i);
   }
   if constexpr (folded_mass_matrix<S>() && epsilon<T>() >= epsilon<double>()) {
     // M is constant up to its joints' turns of their rates: v̇ = M⁻¹·r with
