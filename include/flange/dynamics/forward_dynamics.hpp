@@ -123,8 +123,9 @@ template <class A, class S, class T, class M, class PM>
   inverse_dynamics<A>(scene, motions, v, no_rates{}, n_ext, f_ext, b.data());
   // Where M is folded, the product by its inverse follows at once: b, which
   // the passes have just stored entry by entry, is read a scalar at a time
-  // (math/read_alone.hpp; a free body 32 -> 29 ns). Elsewhere the packed
-  // copy measured faster (a chain of six 129 against 136 ns).
+  // (math/read_alone.hpp; a free body 29 ns against 32 with the packed
+  // copy). Elsewhere the packed copy measured faster (a chain of six 129
+  // against 136 ns).
   constexpr bool alone = folded_mass_matrix<S>();
   const auto b_at = [&](int i) FLANGE_INLINE_LAMBDA {
     if constexpr (alone) return flange::read_alone(b[i]);
