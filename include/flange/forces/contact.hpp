@@ -189,7 +189,14 @@ class Contact {
     const Vec3<T> va = a.v + wa.cross(da);
     const Vec3<T> vb = b.v + wb.cross(db);
     const Vec3<T> v = vb - va;
-    law(i, cp, N, v, T(v.dot(N)));
+    cp.depth_rate = v.dot(N);
+    const Vec3<T> vt = v - cp.depth_rate * N;
+    const auto l = law(i, cp.depth, cp.depth_rate, vt.squaredNorm());
+    cp.hertz = l.hertz;
+    cp.fn = l.fn;
+    cp.vs = l.vs;
+    cp.ft = l.g * l.vs;
+    cp.force = l.fn * N + l.g * vt;
     return cp;
   }
 
@@ -213,22 +220,36 @@ class Contact {
       Vec3d c = p;  // the point's sphere centre, link coordinates
       if constexpr (Turned) c.noalias() += Rs.transpose() * center_[i];
       else c += center_[i];
-      const Vec3<T> cL = c.template cast<T>();
-      const T gap = h + n_L.dot(cL);
-      detail::contact_point<T> cp;
-      cp.depth = T(reff_[i]) - gap;
-      if (!(cp.depth > T(0))) continue;
+      const T n0 = n_L[0], n1 = n_L[1], n2 = n_L[2], c0 = c[0], c1 = c[1], c2 = c[2];
+      const T gap = h + (n0 * c0 + n1 * c1 + n2 * c2);
+      const T depth = T(reff_[i]) - gap;
+      if (!(depth > T(0))) continue;
       // The contact point d = c − e·n from the link's origin, and the
       // ground's velocity relative to it, −(v + ω × d) = e·(ω × n) − (v + ω × c):
       // written so, the parts that do not wait for the overlap (v + ω × c,
       // ω × n and the depth rate −(v + ω × c)·n, as (ω × n)·n = 0) are
-      // computed beside it, not after it.
-      const T e = gap + T(s_) * cp.depth;
-      const Vec3<T> d = cL - e * n_L;
-      const Vec3<T> vc = v_L + w_L.cross(cL), wn = w_L.cross(n_L);
-      law(i, cp, n_L, Vec3<T>(e * wn - vc), T(-vc.dot(n_L)));
-      f += cp.force;
-      n += d.cross(cp.force);
+      // computed beside it, not after it. All in scalars: this is the path
+      // from the state to the accelerations, and on it Eigen's 16-byte
+      // packets over three entries (their shuffles, and their loads of
+      // values just stored entry by entry) measured a third of the pair's
+      // time (docs/contact.md, "Cost").
+      const T e = gap + T(s_) * depth;
+      const T w0 = w_L[0], w1 = w_L[1], w2 = w_L[2];
+      const T vc0 = v_L[0] + (w1 * c2 - w2 * c1), vc1 = v_L[1] + (w2 * c0 - w0 * c2),
+              vc2 = v_L[2] + (w0 * c1 - w1 * c0);
+      const T rate = -(vc0 * n0 + vc1 * n1 + vc2 * n2);
+      // The slip velocity: the relative velocity less its normal part.
+      const T vt0 = e * (w1 * n2 - w2 * n1) - vc0 - rate * n0, vt1 = e * (w2 * n0 - w0 * n2) - vc1 - rate * n1,
+              vt2 = e * (w0 * n1 - w1 * n0) - vc2 - rate * n2;
+      const auto l = law(i, depth, rate, vt0 * vt0 + vt1 * vt1 + vt2 * vt2);
+      const T F0 = l.fn * n0 + l.g * vt0, F1 = l.fn * n1 + l.g * vt1, F2 = l.fn * n2 + l.g * vt2;
+      const T d0 = c0 - e * n0, d1 = c1 - e * n1, d2 = c2 - e * n2;
+      f[0] += F0;
+      f[1] += F1;
+      f[2] += F2;
+      n[0] += d1 * F2 - d2 * F1;
+      n[1] += d2 * F0 - d0 * F2;
+      n[2] += d0 * F1 - d1 * F0;
     }
   }
 
@@ -348,33 +369,32 @@ class Contact {
     }
   };
 
-  /// The law at point i of an overlap cp.depth > 0 along N, at the velocity
-  /// v of b relative to a at the contact point (in N's coordinates) whose
-  /// component v·N, the depth rate, the caller gives (in whichever form it
-  /// has it soonest): cp's depth rate, forces and slip.
+  /// The law's scalars at point i of an overlap δ > 0: the Hertz force
+  /// f_H = (4/3)·k·δ·√(R·k·δ), the normal force f_n = f_H·(1 + (3/2)·c·δ̇),
+  /// never pulling, the slip speed v_s and g = f_t/v_s, the factor of the
+  /// slip velocity in the friction force. The force on frame_a's side is
+  /// f_n·N + g·v_t; each caller forms it in its own coordinates.
   template <class T>
-  FLANGE_INLINE void law(int i, detail::contact_point<T>& cp, const Vec3<T>& N, const Vec3<T>& v,
-                         const T& depth_rate) const {
+  struct law_values {
+    T hertz, fn, vs, g;
+  };
+  template <class T>
+  [[nodiscard]] FLANGE_INLINE law_values<T> law(int i, const T& depth, const T& depth_rate, const T& vs2) const {
     using std::sqrt;
-    cp.depth_rate = depth_rate;
-    const Vec3<T> vt = v - cp.depth_rate * N;
-    cp.hertz = T(4.0 / 3.0 * k_) * cp.depth * sqrt(T(reff_[i] * k_) * cp.depth);
-    const T f = cp.hertz * (T(1) + T(1.5 * c_) * cp.depth_rate);
-    cp.fn = f > T(0) ? f : T(0);
-    cp.force = cp.fn * N;
-    const T vs2 = vt.squaredNorm();
+    law_values<T> l{};
+    l.hertz = T(4.0 / 3.0 * k_) * depth * sqrt(T(reff_[i] * k_) * depth);
+    const T f = l.hertz * (T(1) + T(1.5 * c_) * depth_rate);
+    l.fn = f > T(0) ? f : T(0);
     if (vs2 > T(0)) {
-      // f_t/v_s, the factor of the slip vector, without a division by v_s
-      // below v_t (the ramp is v_s/v_t there), and above it with v_s's square
-      // root taken beside μ's division.
-      cp.vs = sqrt(vs2);
+      // Without a division by v_s below v_t (the ramp is v_s/v_t there), and
+      // above it with v_s's square root taken beside μ's division.
+      l.vs = sqrt(vs2);
       const T r2 = vs2 * T(inv_vt_ * inv_vt_);
       const T mu = T(mu_d_) + T(2 * (mu_s_ - mu_d_)) / (T(1) + r2);
-      const T per_vs = r2 < T(1) ? mu * T(inv_vt_) : mu / cp.vs;  // ramp·μ(v_s)/v_s
-      const T g = cp.fn * (per_vs + T(mu_v_));
-      cp.ft = g * cp.vs;
-      cp.force += g * vt;
+      const T per_vs = r2 < T(1) ? mu * T(inv_vt_) : mu / l.vs;  // ramp·μ(v_s)/v_s
+      l.g = l.fn * (per_vs + T(mu_v_));
     }
+    return l;
   }
 
   void check_material(const char* which, const contact_material& m) const {
