@@ -12,48 +12,13 @@
 #include <flange/models/tree.hpp>
 #include <flange/simulate/jacobian.hpp>
 
+#include "jacobian_agree.hpp"
 #include "tree_laws.hpp"
 
 using namespace flange;
+using test::agree;
 
 namespace {
-/// Both Jacobians (the analytic one whether or not jacobian() takes it for
-/// this scene) and ∂f/∂t at three random states. The two differ by the
-/// round-off of their solves, a few ε times the largest entry over M's
-/// condition: 1e-12 of the largest entry is the bar (measured: 3e-14 at most).
-template <class S>
-void agree(const S& scene, std::mt19937& rng, double t = 0.3) {
-  static_assert(detail::analytic_derivatives<S>(), "the scene should take the analytic Jacobian");
-  for (int k = 0; k < 3; ++k) {
-    const auto x = test::random_state(scene, rng);
-    Eigen::Matrix<double, S::n_state, 1> ft, ft_dual;
-    test::poison_stack();
-    const auto J = detail::jacobian_analytic(scene, t, x, &ft);
-    test::poison_stack();
-    const auto J_dual = jacobian_dual(scene, t, x, &ft_dual);
-    const double scale = std::max(1.0, J_dual.cwiseAbs().maxCoeff());
-    INFO("state " << k << ", largest entry " << scale);
-    CHECK((J - J_dual).cwiseAbs().maxCoeff() <= 1e-12 * scale);
-    CHECK((ft - ft_dual).cwiseAbs().maxCoeff() <= 1e-12 * scale);
-    CHECK(J.allFinite());
-    // v̇ from M's factor in the derivatives' own passes, against the
-    // scene's derivative (the articulated-body algorithm or M's LDLᵀ).
-    std::array<double, S::n_state> xs, f;
-    for (int i = 0; i < S::n_state; ++i) xs[i] = x[i];
-    scene(xs, f, t);
-    detail::derivative_rows<S> rows;
-    std::array<double, S::n_v> vdot;
-    REQUIRE(detail::acceleration_derivatives(scene, t, xs.data(), xs.data() + S::n_q, rows, vdot.data()).index < 0);
-    for (int i = 0; i < S::n_v; ++i) CHECK(std::abs(vdot[i] - f[S::n_q + i]) <= 1e-12 * std::max(1.0, std::abs(f[S::n_q + i])));
-    // And central differences to their accuracy (h = ε^(1/3): about 1e-10
-    // relative, so 1e-7 of the largest entry; jacobian_test.cpp's bar).
-    Eigen::Matrix<double, S::n_state, 1> ft_fd;
-    const auto J_fd = jacobian_finite_difference(scene, t, x, &ft_fd);
-    CHECK((J - J_fd).cwiseAbs().maxCoeff() <= 1e-7 * scale);
-    CHECK((ft - ft_fd).cwiseAbs().maxCoeff() <= 1e-7 * scale);
-  }
-}
-
 /// A PD law on the joint named Name, about its zero.
 template <fixed_string Name>
 auto pd_of(double kp, double kd) {

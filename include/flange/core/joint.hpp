@@ -49,6 +49,16 @@
 //                                Tᵀ·a (a FreeMotion, whose linear rates are
 //                                in frame_a's coordinates): its block of M is
 //                                Tᵀ·M₀·T, and folds as M₀
+//   ball_rates                   true when, connected frame_a toward the
+//                                World, its last three rates are its link's
+//                                angular velocity relative to the parent in
+//                                the link's coordinates, its quaternion
+//                                (quaternion_at, R homogeneous in it) turns
+//                                with q̇ = ½·Q ⊗ (ω, 0), and the rates before
+//                                them (quaternion_at of them) are
+//                                translations along the parent's axes, q = v
+//                                (a Spherical, a FreeMotion): the analytic
+//                                Jacobian takes it (dynamics/derivatives.hpp)
 //   as_cut, cut_state(R, p, w, ṗ, q, v)  what it leaves free when it closes a
 //                                loop (cut_freedom below; without it, it
 //                                cannot be cut), and its coordinates and rates

@@ -49,11 +49,13 @@
 
 #include <Eigen/Core>
 
+#include "flange/detail/static_for.hpp"
 #include "flange/dynamics/external.hpp"
 #include "flange/dynamics/forward_dynamics.hpp"
 #include "flange/dynamics/ldlt.hpp"
 #include "flange/dynamics/links.hpp"
 #include "flange/math/dual.hpp"
+#include "flange/math/quaternion.hpp"
 
 namespace flange::detail {
 
@@ -158,6 +160,7 @@ struct space {
   using lin = Vec3d;
   using moment = Mat3d;  // a rotational inertia
   static ang zero_ang() { return Vec3d::Zero(); }
+  static moment zero_moment() { return Mat3d::Zero(); }
   static ang ang_of(const Vec3d& x) { return x; }
   static lin lin_of(const Vec3d& x) { return x; }
   template <class E>
@@ -207,6 +210,7 @@ struct plane {
   using lin = Vec2d;
   using moment = double;  // a rotational inertia: its entry about K
   static ang zero_ang() { return 0; }
+  static moment zero_moment() { return 0; }
   static ang ang_of(const Vec3d& x) { return x[K]; }
   static lin lin_of(const Vec3d& x) { return {x[A], x[B]}; }
   /// A rotation about K as the 2 × 2 matrix of its in-plane block.
@@ -232,11 +236,25 @@ template <class S>
 using geometry_t =
     std::conditional_t<(planar_axis<S>() >= 0), plane<(planar_axis<S>() >= 0 ? planar_axis<S>() : 2)>, space>;
 
-/// Whether joint type J is one the analytic derivatives handle: one rate and
-/// its column fixed in its link.
+/// Whether joint type J is one the analytic derivatives handle as one node:
+/// one rate and its column fixed in its link.
 template <class J>
 constexpr bool one_axis_joint() {
   return J::nq == 1 && J::nv == 1 && fixed_subspace<J>;
+}
+
+/// Whether joint type J, connected Dir, is a ball the analytic derivatives
+/// handle (core/joint.hpp, ball_rates: a Spherical, a FreeMotion): its
+/// translations along the parent's axes are nodes of one rate each, and its
+/// three rotation rates, ω in the link, a group of nodes whose columns all
+/// turn with each of them. It transmits nothing of its own.
+template <class J, int Dir>
+constexpr bool ball_joint() {
+  if constexpr (requires { requires J::ball_rates; }) {
+    return Dir > 0 && !has_generalized_force<J>;
+  } else {
+    return false;
+  }
 }
 
 /// Whether some force element acts on a link (not only on the World).
@@ -247,6 +265,16 @@ constexpr bool has_link_loads() {
   return false;
 }
 
+/// Whether link L + 1's joint is a ball (above), by link.
+template <class S>
+inline constexpr auto ball_links = [] {
+  std::array<bool, S::tree.n_links> r{};
+  [&]<int... L>(std::integer_sequence<int, L...>) {
+    ((r[L + 1] = ball_joint<typename link_info<S, L + 1>::joint_type, link_info<S, L + 1>::dir>()), ...);
+  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+  return r;
+}();
+
 /// Whether the scene's ∂v̇/∂x comes from analytic_derivatives (above).
 template <class S>
 constexpr bool analytic_derivatives() {
@@ -254,43 +282,81 @@ constexpr bool analytic_derivatives() {
     return false;
   } else {
     return []<int... L>(std::integer_sequence<int, L...>) {
-      return (one_axis_joint<typename link_info<S, L + 1>::joint_type>() && ...);
+      return ((one_axis_joint<typename link_info<S, L + 1>::joint_type>() || ball_links<S>[L + 1]) && ...);
     }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
   }
 }
 
-/// Each link's descendants, as lists: those of link k are
-/// list[start[k]] … list[start[k + 1] − 1].
+/// The passes' nodes: one per rate, link by link (parents first) and each
+/// link's rates in order, node 0 the World. A node's parent is the node
+/// before it (its link's previous rate, or its parent link's last); a ball's
+/// rotation nodes all take the velocity and acceleration of the node before
+/// the ball (vparent) and form one group (group: its first node; else the
+/// node itself). A link's body is at its last node.
 template <class S>
-struct descendant_lists {
-  static constexpr int NL = S::tree.n_links;
-  static constexpr int total = [] {
-    int n = 0;
-    for (int c = 1; c < NL; ++c)
-      for (int a = S::tree.link_parent[c]; a != 0; a = S::tree.link_parent[a]) ++n;
-    return n;
-  }();
-  static constexpr std::array<int, NL + 1> start = [] {
-    std::array<int, NL + 1> r{};
-    for (int c = 1; c < NL; ++c)
-      for (int a = S::tree.link_parent[c]; a != 0; a = S::tree.link_parent[a]) ++r[a + 1];
-    for (int k = 1; k <= NL; ++k) r[k] += r[k - 1];
-    return r;
-  }();
-  static constexpr std::array<int, total> list = [] {
-    std::array<int, total> r{};
-    std::array<int, NL + 1> fill = start;
-    for (int c = 1; c < NL; ++c)
-      for (int a = S::tree.link_parent[c]; a != 0; a = S::tree.link_parent[a]) r[fill[a]++] = c;
+struct derivative_nodes {
+  static constexpr int NL = S::tree.n_links, NN = S::n_v + 1;
+  struct table_t {
+    std::array<int, NN> link{}, parent{}, vparent{}, rate{}, group{};
+    std::array<bool, NN> ball{};  ///< a ball's rotation node
+    std::array<int, NL> last{};
+  };
+  static constexpr table_t table = [] {
+    table_t r{};
+    int n = 1;
+    for (int L = 1; L < NL; ++L) {
+      const int J = S::tree.link_joint[L], nv = S::table.nv[J], v0 = S::tree.v_offset[J];
+      const int ball_from = ball_links<S>[L] ? nv - 3 : nv;  // its first rotation rate
+      int prev = r.last[S::tree.link_parent[L]], before_ball = prev;
+      for (int k = 0; k < nv; ++k, ++n) {
+        if (k == ball_from) before_ball = prev;
+        r.link[n] = L;
+        r.rate[n] = v0 + k;
+        r.parent[n] = prev;
+        r.vparent[n] = k >= ball_from ? before_ball : prev;
+        r.group[n] = k >= ball_from ? n - (k - ball_from) : n;
+        r.ball[n] = k >= ball_from;
+        prev = n;
+      }
+      r.last[L] = n - 1;
+    }
     return r;
   }();
 };
 
-/// The rate of row r of acceleration_derivatives' result: link r + 1's.
+/// Each node's descendants, as lists: those of node k are
+/// list[start[k]] … list[start[k + 1] − 1].
+template <class S>
+struct descendant_lists {
+  static constexpr int NN = S::n_v + 1;
+  static constexpr const auto& parent = derivative_nodes<S>::table.parent;
+  static constexpr int total = [] {
+    int n = 0;
+    for (int c = 1; c < NN; ++c)
+      for (int a = parent[c]; a != 0; a = parent[a]) ++n;
+    return n;
+  }();
+  static constexpr std::array<int, NN + 1> start = [] {
+    std::array<int, NN + 1> r{};
+    for (int c = 1; c < NN; ++c)
+      for (int a = parent[c]; a != 0; a = parent[a]) ++r[a + 1];
+    for (int k = 1; k <= NN; ++k) r[k] += r[k - 1];
+    return r;
+  }();
+  static constexpr std::array<int, total> list = [] {
+    std::array<int, total> r{};
+    std::array<int, NN + 1> fill = start;
+    for (int c = 1; c < NN; ++c)
+      for (int a = parent[c]; a != 0; a = parent[a]) r[fill[a]++] = c;
+    return r;
+  }();
+};
+
+/// The rate of row r of acceleration_derivatives' result: node r + 1's.
 template <class S>
 inline constexpr auto derivative_row_rate = [] {
   std::array<int, S::n_v> r{};
-  for (int L = 1; L < S::tree.n_links; ++L) r[L - 1] = S::tree.v_offset[S::tree.link_joint[L]];
+  for (int n = 1; n <= S::n_v; ++n) r[n - 1] = derivative_nodes<S>::table.rate[n];
   return r;
 }();
 
@@ -334,124 +400,181 @@ FLANGE_INLINE spatial<G> world_wrench(const Rot& R, const Lin& r, const Vec3d& n
 template <class S>
 using derivative_rows = Eigen::Matrix<double, S::n_v, 2 * S::n_v + 1, Eigen::RowMajor>;
 
-/// ∂v̇/∂q, ∂v̇/∂v and ∂v̇/∂t at (t, q, v) as the columns of out (columns in
-/// rate order; row r is rate derivative_row_rate<S>[r]), and v̇ itself into
-/// vdot when given. Returns the pivot of M that failed (index ≥ 0: out and
-/// vdot are not written; index is its rate), as the mass-matrix solve reports it.
+/// ∂v̇/∂q, ∂v̇/∂v and ∂v̇/∂t at (t, q, v) as the columns of out, and v̇ itself
+/// into vdot when given. Columns in rate order: first the directions of q,
+/// one per rate (a ball's rotation rates: its link turned about its own axes,
+/// Q moving by ½·Q ⊗ (δ, 0); simulate/jacobian.hpp turns these into the
+/// quaternion's four), then v, then t; row r is rate derivative_row_rate<S>[r].
+/// Returns the pivot of M that failed (index ≥ 0: out and vdot are not
+/// written; index is its rate), as the mass-matrix solve reports it.
 template <class S>
 pivot_report<double> acceleration_derivatives(const S& scene, double t, const double* q, const double* v,
                                               derivative_rows<S>& out, double* vdot = nullptr) {
-  static_assert(analytic_derivatives<S>() && S::n_q == S::n_v);
-  constexpr int NL = S::tree.n_links, N = S::n_v;
-  constexpr auto parent = [] {
+  static_assert(analytic_derivatives<S>());
+  constexpr int NL = S::tree.n_links, N = S::n_v, NN = N + 1;
+  using nodes = derivative_nodes<S>;
+  constexpr auto link_parent = [] {
     std::array<int, NL> p{};
     for (int L = 0; L < NL; ++L) p[L] = S::tree.link_parent[L];
     return p;
   }();
-  constexpr auto rate = [] {  // by link
-    std::array<int, NL> r{};
-    for (int L = 1; L < NL; ++L) r[L] = derivative_row_rate<S>[L - 1];
-    return r;
+  constexpr auto parent = nodes::table.parent;
+  constexpr auto vparent = nodes::table.vparent;
+  constexpr auto rate = nodes::table.rate;
+  constexpr auto node_link = nodes::table.link;
+  constexpr auto last = nodes::table.last;
+  constexpr bool balls = [] {
+    for (int L = 1; L < NL; ++L)
+      if (ball_links<S>[L]) return true;
+    return false;
   }();
 
   // Each link's motion at q, densified: E (parent → link), p (its origin in
-  // the parent's coordinates) and its column (link coordinates).
+  // the parent's coordinates); each node's column (link coordinates).
   using G = geometry_t<S>;
   using Rot = decltype(G::rotation_of(std::get<0>(link_motions<spatial_algebra, double, true>(scene, q)).E()));
-  std::array<Rot, NL> E;
-  std::array<typename G::lin, NL> p;
-  std::array<spatial<G>, NL> col;
+  std::array<Rot, NL> E, R;
+  std::array<typename G::lin, NL> p, r;
+  std::array<spatial<G>, NN> col;
   {
     const auto motions = link_motions<spatial_algebra, double, true>(scene, q);
     for_links<S>([&](auto l) {
       constexpr int L = decltype(l)::value;
+      constexpr int nv = link_info<S, L>::nv, first = nodes::table.last[L] - nv + 1;
       const auto& m = std::get<L - 1>(motions);
       E[L] = G::rotation_of(m.E());
       p[L] = G::lin_of(m.p.dense());
-      const auto c = m.template col<0>();
-      col[L] = {G::ang_of(c.ang.dense()), G::lin_of(c.lin.dense())};
+      static_for<nv>([&](auto k) {
+        const auto c = m.template col<decltype(k)::value>();
+        col[first + k] = {G::ang_of(c.ang.dense()), G::lin_of(c.lin.dense())};
+      });
     });
   }
 
   // Down the tree: poses, the columns and velocities in the world, and the
   // accelerations as they would be at v̇ = 0 (acc⁰; the true ones follow once
   // v̇ is known, below); each body's inertia, its wrench at acc⁰ and its
-  // velocity coupling.
-  std::array<Rot, NL> R;
-  std::array<typename G::lin, NL> r;
-  std::array<spatial<G>, NL> s, vel, acc, u, psi, F;
-  std::array<world_inertia<G>, NL> Ic;
-  std::array<velocity_coupling<G>, NL> Bc;
+  // velocity coupling, at its link's last node (the others carry none).
+  std::array<spatial<G>, NN> s, vel, acc, u, psi, F;
+  std::array<world_inertia<G>, NN> Ic;
+  std::array<velocity_coupling<G>, NN> Bc;
   R[0].setIdentity();
   r[0].setZero();
-  vel[0] = acc[0] = {G::zero_ang(), G::lin::Zero()};
-  if constexpr (S::has_gravity) acc[0].l = G::lin_of(scene.model().minus_g);
   for (int L = 1; L < NL; ++L) {
-    const int P = parent[L];
+    const int P = link_parent[L];
     R[L] = R[P] * E[L].transpose();
     r[L] = r[P] + R[P] * p[L];
-    const auto w = turn(R[L], col[L].a);
-    s[L] = {w, R[L] * col[L].l + cross(r[L], w)};
-    const double qd = v[rate[L]];
-    vel[L] = vel[P] + s[L] * qd;
-    u[L] = motion_cross(s[L], vel[P]);
-    acc[L] = acc[P] - u[L] * qd;  // v_L × s_L = v_P × s_L
-    Ic[L] = G::to_world(scene.model().link[L], R[L], r[L]);
-    const spatial<G> h = Ic[L] * vel[L];
-    F[L] = Ic[L] * acc[L] + force_cross(vel[L], h);
-    Bc[L] = G::coupling_of(Ic[L], vel[L], h);
   }
+  // Every spatial quantity about link 1's origin, not the World's: the
+  // passes hold in any fixed frame, and a base far from the World's origin
+  // would otherwise carry its lever arm (m·|r|²) into every inertia, where
+  // a light link's few 1e-4 kg m² are lost to round-off.
+  {
+    const typename G::lin r1 = r[1];
+    for (int L = 1; L < NL; ++L) r[L] -= r1;
+  }
+  vel[0] = acc[0] = {G::zero_ang(), G::lin::Zero()};
+  if constexpr (S::has_gravity) acc[0].l = G::lin_of(scene.model().minus_g);
+  for (int n = 1; n < NN; ++n) {
+    const int L = node_link[n], P = parent[n], V = vparent[n];
+    const auto w = turn(R[L], col[n].a);
+    s[n] = {w, R[L] * col[n].l + cross(r[L], w)};
+    const double qd = v[rate[n]];
+    vel[n] = vel[P] + s[n] * qd;
+    u[n] = motion_cross(s[n], vel[V]);
+    acc[n] = acc[P] - u[n] * qd;  // v_L × s_L = v_V × s_L
+    if (!balls || n == last[L]) {
+      Ic[n] = G::to_world(scene.model().link[L], R[L], r[L]);
+      const spatial<G> h = Ic[n] * vel[n];
+      F[n] = Ic[n] * acc[n] + force_cross(vel[n], h);
+      Bc[n] = G::coupling_of(Ic[n], vel[n], h);
+    } else {
+      Ic[n] = {0, G::lin::Zero(), G::zero_moment()};
+      F[n] = {G::zero_ang(), G::lin::Zero()};
+      Bc[n] = {G::zero_moment(), G::lin::Zero()};
+    }
+  }
+  // What ∂/∂v reads for u: a ball's rotation columns turn with its link
+  // while the next ones' u read the velocity before the ball, which adds
+  // ½·s × (v_L − v_V) to it; a node of one rate's is u.
+  std::conditional_t<balls, std::array<spatial<G>, NN>, std::array<int, 0>> uv_ball;
+  if constexpr (balls)
+    for (int n = 1; n < NN; ++n) {
+      uv_ball[n] = u[n];
+      if (nodes::table.ball[n]) uv_ball[n] += motion_cross(s[n], vel[last[node_link[n]]] - vel[vparent[n]]) * 0.5;
+    }
+  auto uv = [&](int n) -> const spatial<G>& {
+    if constexpr (balls) return uv_ball[n];
+    else return u[n];
+  };
 
   // Up the tree: the composites, M, the forces τ⁰ at v̇ = 0 and what does not
-  // depend on v̇ (∂/∂v) for each pair of link L and an ancestor (M and the
-  // derivatives are zero between links on different branches). Rows in link
+  // depend on v̇ (∂/∂v) for each pair of node n and an ancestor (M and the
+  // derivatives are zero between nodes on different branches). Rows in node
   // order (parents first), so that M's factor keeps the tree's zeros; columns
   // in rate order.
   Eigen::Matrix<double, N, N> M;
-  Eigen::Matrix<double, N, 1> b;  // Q − τ⁰, then v̇, by link
-  std::array<spatial<G>, NL> y;   // I_L·s_L
-  std::array<typename G::ang, NL> z;  // the angular part of B_Lᵀ·s_L
+  Eigen::Matrix<double, N, 1> b;  // Q − τ⁰, then v̇, by node
+  std::array<spatial<G>, NN> y;   // I_n·s_n
+  std::array<typename G::ang, NN> z;  // the angular part of B_nᵀ·s_n
   constexpr bool chain = [] {
-    for (int L = 1; L < NL; ++L)
-      if (S::tree.link_parent[L] != L - 1) return false;
+    for (int n = 1; n < NN; ++n)
+      if (nodes::table.parent[n] != n - 1) return false;
     return true;
   }();
   if constexpr (!chain) out.setZero();
-  for (int L = NL - 1; L >= 1; --L) {
-    const int i = rate[L];
-    y[L] = Ic[L] * s[L];
-    z[L] = Bc[L].transposed_times(s[L]);
-    b[L - 1] = -s[L].dot(F[L]);
-    for (int j = L; j != 0; j = parent[j]) {
-      const int k = rate[j];
-      M(L - 1, j - 1) = y[L].dot(s[j]);
-      out(L - 1, N + k) = inner(z[L], s[j].a) + 2 * y[L].dot(u[j]);
+  for (int n = NN - 1; n >= 1; --n) {
+    const int i = rate[n];
+    y[n] = Ic[n] * s[n];
+    z[n] = Bc[n].transposed_times(s[n]);
+    b[n - 1] = -s[n].dot(F[n]);
+    for (int j = n; j != 0; j = parent[j]) {
+      M(n - 1, j - 1) = y[n].dot(s[j]);
+      out(n - 1, N + rate[j]) = inner(z[n], s[j].a) + 2 * y[n].dot(uv(j));
     }
-    const spatial<G> Gv = Bc[L] * s[L] + Ic[L] * u[L] * 2;
-    for (int j = parent[L]; j != 0; j = parent[j]) out(j - 1, N + i) = s[j].dot(Gv);
-    if (const int P = parent[L]; P != 0) {
-      Ic[P] += Ic[L];
-      Bc[P] += Bc[L];
-      F[P] += F[L];
+    const spatial<G> Gv = Bc[n] * s[n] + Ic[n] * uv(n) * 2;
+    for (int j = parent[n]; j != 0; j = parent[j]) out(j - 1, N + i) = s[j].dot(Gv);
+    if (const int P = parent[n]; P != 0) {
+      Ic[P] += Ic[n];
+      Bc[P] += Bc[n];
+      F[P] += F[n];
     }
   }
   // The joints' own forces Q by dual numbers: their values into b, their
   // derivatives kept for below. A force of the joint's own q, v and the time
   // (an axis law, a drive of t) in those three directions; a drive that reads
   // the state (τ(t, x)) in every direction of the state and the time, its
-  // row of ∂Q/∂x dense.
-  std::array<std::array<double, 3>, NL> dQ{};
+  // row of ∂Q/∂x dense. (A ball transmits nothing of its own.)
+  std::array<std::array<double, 3>, NN> dQ{};
   using reading = state_reading_links<S>;
   using DW = dual<double, 2 * N + 1>;
   constexpr auto loads = load_flags<S>::value;
   constexpr bool loaded = has_link_loads<S>();
   // The state and the time in every direction, for the drives that read the
-  // state and the force elements.
+  // state and the force elements: q's directions by rate, a ball's
+  // quaternion moving by ½·Q ⊗ (e_k, 0) in its rotation rate k's.
   constexpr bool wide = reading::count > 0 || loaded;
   std::array<DW, wide ? S::n_q : 0> qw;
   std::array<DW, wide ? N : 0> vw;
   if constexpr (wide) {
-    for (int k = 0; k < S::n_q; ++k) qw[k] = DW::variable(q[k], k);  // q_k's column is its rate's: nq = nv
+    for_links<S>([&](auto l) {
+      constexpr int L = decltype(l)::value;
+      using LI = link_info<S, L>;
+      if constexpr (ball_links<S>[L]) {
+        constexpr int qa = LI::joint_type::quaternion_at;
+        for (int k = 0; k < qa; ++k) qw[LI::q + k] = DW::variable(q[LI::q + k], LI::v + k);
+        const double* Q = q + LI::q + qa;
+        for (int k = 0; k < 4; ++k) qw[LI::q + qa + k] = DW(Q[k]);
+        for (int c = 0; c < 3; ++c) {
+          const double e[3] = {double(c == 0), double(c == 1), double(c == 2)};
+          double dQc[4];
+          quaternion::rate(Q, e, dQc);
+          for (int k = 0; k < 4; ++k) qw[LI::q + qa + k].d[LI::v + qa + c] = dQc[k];
+        }
+      } else {
+        qw[LI::q] = DW::variable(q[LI::q], LI::v);
+      }
+    });
     for (int k = 0; k < N; ++k) vw[k] = DW::variable(v[k], N + k);
   }
   std::array<DW, reading::count> dQ_read;
@@ -464,23 +587,23 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
     const auto x = state_view(scene, qx.data(), vx.data());
     const D td = D::variable(t, 2);
     for_links<S>([&](auto l) {
-      constexpr int L = decltype(l)::value;
+      constexpr int L = decltype(l)::value, n = nodes::table.last[L];
       using LI = link_info<S, L>;
       using J = typename LI::joint_type;
       if constexpr (force_reads_state<J>()) {
-        constexpr int n = reading::index_of(L);
+        constexpr int k = reading::index_of(L);
         const auto xw = state_view(scene, qw.data(), vw.data());
-        DW& tau = dQ_read[n];
+        DW& tau = dQ_read[k];
         scene.template component<LI::joint>().generalized_force(DW::variable(t, 2 * N), xw, qw.data() + LI::q,
                                                                  vw.data() + LI::v, &tau);
-        b[L - 1] += tau.v;
+        b[n - 1] += tau.v;
       } else if constexpr (has_generalized_force<J>) {
         qx[LI::q] = D::variable(q[LI::q], 0);
         vx[LI::v] = D::variable(v[LI::v], 1);
         D tau;
         scene.template component<LI::joint>().generalized_force(td, x, qx.data() + LI::q, vx.data() + LI::v, &tau);
-        b[L - 1] += tau.v;
-        dQ[L] = {tau.d[0], tau.d[1], tau.d[2]};
+        b[n - 1] += tau.v;
+        dQ[n] = {tau.d[0], tau.d[1], tau.d[2]};
         qx[LI::q] = D(q[LI::q]);
         vx[LI::v] = D(v[LI::v]);
       }
@@ -493,20 +616,21 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   // world origin they enter τ_i as −s_iᵀ·Σ_{L in i's subtree} W_L: into b
   // here; their derivatives after the passes, below.
   std::conditional_t<loaded, link_loads<S, DW>, std::array<int, 0>> n_w, f_w;
-  std::array<spatial<G>, NL> W_own, W;  // each link's; summed over its subtree
+  std::array<spatial<G>, NN> W_own, W;  // each link's, at its last node; summed over the node's subtree
   if constexpr (loaded) {
     const auto xw = state_view(scene, qw.data(), vw.data());
     const auto mw = link_motions<spatial_algebra, DW, true>(scene, qw.data());
     gather_external<spatial_algebra>(scene, DW::variable(t, 2 * N), xw, mw, mw, n_w, f_w);
-    for (int L = 0; L < NL; ++L) W_own[L] = {G::zero_ang(), G::lin::Zero()};
+    for (int n = 0; n < NN; ++n) W_own[n] = {G::zero_ang(), G::lin::Zero()};
     for (int L = 1; L < NL; ++L)
       if (loads.torque[L]) {
-        W_own[L] = world_wrench<G>(R[L], r[L], lane(n_w[L], -1), loads.force[L] ? lane(f_w[L], -1) : Vec3d::Zero());
+        W_own[last[L]] =
+            world_wrench<G>(R[L], r[L], lane(n_w[L], -1), loads.force[L] ? lane(f_w[L], -1) : Vec3d::Zero());
       }
     W = W_own;
-    for (int L = NL - 1; L >= 1; --L) {
-      b[L - 1] += s[L].dot(W[L]);
-      if (const int P = parent[L]; P != 0) W[P] += W[L];
+    for (int n = NN - 1; n >= 1; --n) {
+      b[n - 1] += s[n].dot(W[n]);
+      if (const int P = parent[n]; P != 0) W[P] += W[n];
     }
   }
 
@@ -516,7 +640,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   // moves nothing with inertia, or whose motion repeats others').
   constexpr double tol = pivot_tolerance<N, double>();
   if constexpr (chain) {
-    // Every link above k: dense loops the compiler vectorizes.
+    // Every node above k: dense loops the compiler vectorizes.
     std::array<double, N> c, diag;
     for (int k = 0; k < N; ++k) diag[k] = M(k, k);
     for (int k = N - 1; k >= 0; --k) {
@@ -531,7 +655,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   } else {
     std::array<double, N> diag;
     for (int k = 0; k < N; ++k) diag[k] = M(k, k);
-    for (int k = NL - 1; k >= 1; --k) {
+    for (int k = NN - 1; k >= 1; --k) {
       if (!(M(k - 1, k - 1) > tol * diag[k - 1])) [[unlikely]]
         return {rate[k], M(k - 1, k - 1), diag[k - 1]};
       const double d = std::sqrt(M(k - 1, k - 1));
@@ -546,13 +670,13 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   // y_k = (b_k − Σ_{c below k} C(c, k)·y_c) / C(k, k), then C·x = y from the
   // root, x_k = (y_k − Σ_{a above k} C(k, a)·x_a) / C(k, k).
   using below = descendant_lists<S>;
-  std::array<double, NL> inv;
-  for (int k = 1; k < NL; ++k) inv[k] = 1 / M(k - 1, k - 1);
+  std::array<double, NN> inv;
+  for (int k = 1; k < NN; ++k) inv[k] = 1 / M(k - 1, k - 1);
   auto solve = [&]<int W>(auto& X, int c0, std::integral_constant<int, W>) {
     using Row = Eigen::Matrix<double, 1, W>;
     auto row = [&](int k) { return X.row(k - 1).template segment<W>(c0); };
     // Two sums in turn, so that each waits on its own last product only.
-    for (int k = NL - 1; k >= 1; --k) {
+    for (int k = NN - 1; k >= 1; --k) {
       Row acc = row(k), acc2 = Row::Zero();
       int e = below::start[k];
       const int end = below::start[k + 1];
@@ -563,7 +687,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
       if (e < end) acc -= M(below::list[e] - 1, k - 1) * row(below::list[e]);
       row(k) = (acc + acc2) * inv[k];
     }
-    for (int k = 1; k < NL; ++k) {
+    for (int k = 1; k < NN; ++k) {
       Row acc = row(k), acc2 = Row::Zero();
       int a = parent[k];
       for (; a != 0 && parent[a] != 0; a = parent[parent[a]]) {
@@ -574,57 +698,68 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
       row(k) = (acc + acc2) * inv[k];
     }
   };
-  // v̇ = M⁻¹·(Q − τ⁰); then each link's acceleration changes by δa_L = δa_P +
-  // s_L·v̇_L, and ψ_L = s_L × a_P − u_L × v_P follows.
+  // v̇ = M⁻¹·(Q − τ⁰); then each node's acceleration changes by δa_n = δa_P +
+  // s_n·v̇_n, and ψ_n = s_n × a_V − u_n × v_V follows (V: vparent).
   solve(b, 0, std::integral_constant<int, 1>{});
   if (vdot)
-    for (int L = 1; L < NL; ++L) vdot[rate[L]] = b[L - 1];
-  std::array<spatial<G>, NL> da;
+    for (int n = 1; n < NN; ++n) vdot[rate[n]] = b[n - 1];
+  std::array<spatial<G>, NN> da;
   da[0] = {G::zero_ang(), G::lin::Zero()};
-  for (int L = 1; L < NL; ++L) {
-    const int P = parent[L];
-    da[L] = da[P] + s[L] * b[L - 1];
-    psi[L] = motion_cross(s[L], acc[P] + da[P]) - motion_cross(u[L], vel[P]);
+  for (int n = 1; n < NN; ++n) {
+    const int P = parent[n], V = vparent[n];
+    da[n] = da[P] + s[n] * b[n - 1];
+    psi[n] = motion_cross(s[n], acc[V] + da[V]) - motion_cross(u[n], vel[V]);
   }
-  // Up the tree again: the subtree's wrench at v̇, F_L = F⁰_L + I_L·δa_L + Y_L
-  // with Y_L = Σ over L's children c of (I_c·s_c·v̇_c + Y_c), and the pairs'
+  // Up the tree again: the subtree's wrench at v̇, F_n = F⁰_n + I_n·δa_n + Y_n
+  // with Y_n = Σ over n's children c of (I_c·s_c·v̇_c + Y_c), and the pairs'
   // ∂/∂q; then the joints' own.
-  std::array<spatial<G>, NL> Y;
-  for (int L = 0; L < NL; ++L) Y[L] = {G::zero_ang(), G::lin::Zero()};
-  for (int L = NL - 1; L >= 1; --L) {
-    const int i = rate[L];
-    F[L] += Ic[L] * da[L] + Y[L];
-    // With loads, ∂s_L/∂q_j = s_j × s_L turns their share: −(s_j × s_L)ᵀ·W_L.
+  std::array<spatial<G>, NN> Y;
+  for (int n = 0; n < NN; ++n) Y[n] = {G::zero_ang(), G::lin::Zero()};
+  for (int n = NN - 1; n >= 1; --n) {
+    const int i = rate[n];
+    F[n] += Ic[n] * da[n] + Y[n];
+    // With loads, ∂s_n/∂q_j = s_j × s_n turns their share: −(s_j × s_n)ᵀ·W_n.
     std::conditional_t<loaded, spatial<G>, int> gw{};
-    if constexpr (loaded) gw = force_cross(s[L], W[L]);
-    for (int j = L; j != 0; j = parent[j]) {
-      double e = y[L].dot(psi[j]) - inner(z[L], u[j].a);
+    if constexpr (loaded) gw = force_cross(s[n], W[n]);
+    for (int j = n; j != 0; j = parent[j]) {
+      double e = y[n].dot(psi[j]) - inner(z[n], u[j].a);
       if constexpr (loaded) e += s[j].dot(gw);
-      out(L - 1, rate[j]) = e;
+      out(n - 1, rate[j]) = e;
     }
-    const spatial<G> Gq = force_cross(s[L], F[L]) + Bc[L] * u[L] - Ic[L] * psi[L];
-    for (int j = parent[L]; j != 0; j = parent[j]) out(j - 1, i) = -s[j].dot(Gq);
-    Y[parent[L]] += y[L] * b[L - 1] + Y[L];
-    out(L - 1, i) += dQ[L][0];
-    out(L - 1, N + i) += dQ[L][1];
-    out(L - 1, 2 * N) = dQ[L][2];
+    const spatial<G> Gq = force_cross(s[n], F[n]) + Bc[n] * u[n] - Ic[n] * psi[n];
+    for (int j = parent[n]; j != 0; j = parent[j]) {
+      // Within a ball, node j's column turns with n's rate too: row j,
+      // column n as for an ancestor.
+      if (balls && nodes::table.group[j] == nodes::table.group[n]) {
+        double e = y[j].dot(psi[n]) - inner(z[j], u[n].a);
+        if constexpr (loaded) e += s[n].dot(force_cross(s[j], W[j]));
+        out(j - 1, i) = e;
+      } else {
+        out(j - 1, i) = -s[j].dot(Gq);
+      }
+    }
+    Y[parent[n]] += y[n] * b[n - 1] + Y[n];
+    out(n - 1, i) += dQ[n][0];
+    out(n - 1, N + i) += dQ[n][1];
+    out(n - 1, 2 * N) = dQ[n][2];
   }
-  for (int n = 0; n < reading::count; ++n)
-    for (int c = 0; c <= 2 * N; ++c) out(reading::link[n] - 1, c) += dQ_read[n].d[c];
+  for (int k = 0; k < reading::count; ++k)
+    for (int c = 0; c <= 2 * N; ++c) out(last[reading::link[k]] - 1, c) += dQ_read[k].d[c];
   if constexpr (loaded) {
     // ∂W_L/∂x: the loads' own derivatives turned into the world, and for q_j
     // of L's ancestors (and L) the turn of W_L itself, s_j ×* W_L; each
     // projected on the columns of L and its ancestors.
     for (int L = 1; L < NL; ++L) {
       if (!loads.torque[L]) continue;
+      const int n = last[L];
       for (int c = 0; c <= 2 * N; ++c) {
         const spatial<G> dW =
             world_wrench<G>(R[L], r[L], lane(n_w[L], c), loads.force[L] ? lane(f_w[L], c) : Vec3d::Zero());
-        for (int i = L; i != 0; i = parent[i]) out(i - 1, c) += s[i].dot(dW);
+        for (int i = n; i != 0; i = parent[i]) out(i - 1, c) += s[i].dot(dW);
       }
-      for (int j = L; j != 0; j = parent[j]) {
-        const spatial<G> turned = force_cross(s[j], W_own[L]);
-        for (int i = L; i != 0; i = parent[i]) out(i - 1, rate[j]) += s[i].dot(turned);
+      for (int j = n; j != 0; j = parent[j]) {
+        const spatial<G> turned = force_cross(s[j], W_own[n]);
+        for (int i = n; i != 0; i = parent[i]) out(i - 1, rate[j]) += s[i].dot(turned);
       }
     }
   }
@@ -634,9 +769,9 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   if constexpr (C <= 40) {
     solve(out, 0, std::integral_constant<int, C>{});
   } else {
-    constexpr int last = 16 + C % 16;
-    for (int c0 = 0; c0 + last < C; c0 += 16) solve(out, c0, std::integral_constant<int, 16>{});
-    solve(out, C - last, std::integral_constant<int, last>{});
+    constexpr int last_block = 16 + C % 16;
+    for (int c0 = 0; c0 + last_block < C; c0 += 16) solve(out, c0, std::integral_constant<int, 16>{});
+    solve(out, C - last_block, std::integral_constant<int, last_block>{});
   }
   return {};
 }

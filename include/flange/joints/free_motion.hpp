@@ -88,6 +88,8 @@ class FreeMotion {
   static constexpr int nq = 7, nv = 6;
   /// Its unit quaternion (x, y, z, w) starts at q[3] (core/joint.hpp: quaternion_joint).
   static constexpr int quaternion_at = 3;
+  /// ω in the link, after quaternion_at translations along frame_a's axes (core/joint.hpp).
+  static constexpr bool ball_rates = true;
   static constexpr bool reversible = false;
   /// Its columns are constant but for its linear rates, in frame_a's
   /// coordinates: S(q) = S₀·diag(E, 1) (core/joint.hpp).

@@ -71,6 +71,8 @@ class Spherical {
   static constexpr int nq = 4, nv = 3;
   /// Its unit quaternion (x, y, z, w) starts at q[0] (core/joint.hpp: quaternion_joint).
   static constexpr int quaternion_at = 0;
+  /// ω in the link, after quaternion_at translations along frame_a's axes (core/joint.hpp).
+  static constexpr bool ball_rates = true;
   static constexpr bool reversible = true;
   static constexpr int planar_normal() { return -1; }
   static constexpr bool moves_in_plane(int) { return false; }

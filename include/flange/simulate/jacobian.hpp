@@ -18,6 +18,7 @@
 #include <limits>
 
 #include "flange/dynamics/derivatives.hpp"
+#include "flange/math/quaternion.hpp"
 #include "flange/math/dual.hpp"
 #include "flange/simulate/system.hpp"
 
@@ -100,9 +101,50 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
   }
   jacobian_matrix<S> J;
   J.template topRows<nq>().setZero();
-  for (int i = 0; i < nv; ++i) J(i, nq + i) = 1;  // q̇ = v: one-axis joints
   constexpr auto row = detail::derivative_row_rate<S>;
-  for (int r = 0; r < nv; ++r) J.row(nq + row[r]) = d.row(r).template head<2 * nv>();
+  for (int r = 0; r < nv; ++r) J.row(nq + row[r]).template tail<nv>() = d.row(r).template segment<nv>(nv);
+  // ∂/∂q and q̇'s rows, joint by joint: q̇ = v, and ∂v̇/∂q the rate's column,
+  // for a coordinate of one rate (a ball's translations too); for a ball's
+  // quaternion Q = (x, y, z, w), q̇ = ½·Q ⊗ (ω, 0) (linear in Q and in ω),
+  // and ∂v̇/∂Q through the turn δ (link coordinates) that a change of Q
+  // makes, δ = 2·vec(Q* ⊗ dQ)/|Q|² (R is homogeneous in Q: a change along Q
+  // turns nothing).
+  detail::for_links<S>([&](auto l) {
+    constexpr int L = decltype(l)::value;
+    using LI = detail::link_info<S, L>;
+    if constexpr (detail::ball_links<S>[L]) {
+      constexpr int qa = LI::joint_type::quaternion_at, qQ = LI::q + qa, vw = LI::v + qa;
+      for (int k = 0; k < qa; ++k) {
+        J(LI::q + k, nq + LI::v + k) = 1;
+        for (int r = 0; r < nv; ++r) J(nq + row[r], LI::q + k) = d(r, LI::v + k);
+      }
+      const double* Q = xs.data() + qQ;
+      const double* w = xs.data() + nq + vw;
+      for (int m = 0; m < 4; ++m) {
+        const double e[4] = {double(m == 0), double(m == 1), double(m == 2), double(m == 3)};
+        double c[4];
+        quaternion::rate(e, w, c);
+        for (int k = 0; k < 4; ++k) J(qQ + k, qQ + m) = c[k];
+      }
+      for (int m = 0; m < 3; ++m) {
+        const double e[3] = {double(m == 0), double(m == 1), double(m == 2)};
+        double c[4];
+        quaternion::rate(Q, e, c);
+        for (int k = 0; k < 4; ++k) J(qQ + k, nq + vw + m) = c[k];
+      }
+      const double x = Q[0], y = Q[1], z = Q[2], s = Q[3], k2 = 2 / (x * x + y * y + z * z + s * s);
+      Eigen::Matrix<double, 3, 4> T;  // ∂δ/∂Q
+      T << s, z, -y, -x,  //
+          -z, s, x, -y,   //
+          y, -x, s, -z;
+      T *= k2;
+      for (int r = 0; r < nv; ++r)
+        J.row(nq + row[r]).template segment<4>(qQ) = d.row(r).template segment<3>(vw) * T;
+    } else {
+      J(LI::q, nq + LI::v) = 1;
+      for (int r = 0; r < nv; ++r) J(nq + row[r], LI::q) = d(r, LI::v);
+    }
+  });
   if (dfdt) {
     dfdt->template head<nq>().setZero();
     for (int r = 0; r < nv; ++r) (*dfdt)(nq + row[r]) = d(r, 2 * nv);
