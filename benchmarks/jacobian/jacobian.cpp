@@ -11,9 +11,9 @@
 // path says which jacobian() took: the analytic derivatives
 // (dynamics/derivatives.hpp) or dual numbers. dual_ns, jacobian_dual()'s
 // time, is there for the named scenes and, with -DFLANGE_SCALE_FULL=ON, for
-// the chains up to 16 joints; where it is, jacobian() is first checked
-// against it (1e-12 of the largest entry) and the program fails if they
-// differ. Scenes: chains.cpp, scenes.cpp and (full build only) trees.cpp.
+// the chains up to 16 joints and three floating-base trees; where it is,
+// jacobian() is first checked against it (1e-12 of the largest entry) and the
+// program fails if they differ. Scenes: chains.cpp, scenes.cpp, trees.cpp.
 #include "jacobian.hpp"
 
 int main() {

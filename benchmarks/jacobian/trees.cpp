@@ -1,32 +1,48 @@
-// The Jacobian benchmark's floating-base tree (jacobian.hpp), the scale
-// benchmark's: models::legged<4, L>, a free trunk with four legs of L joints
-// (N = 4·L leg joints and the trunk's six rates). It takes dual numbers (a
-// FreeMotion joint is not on the analytic path), whose units cost minutes to
-// compile: in the -DFLANGE_SCALE_FULL=ON build only.
+// The Jacobian benchmark's floating-base trees (jacobian.hpp), the scale
+// benchmark's: models::legged<Legs, L>, a free trunk with legs of L joints
+// (N = Legs·L leg joints and the trunk's six rates), for N = 1, 2, 4, 8 and
+// 16; and the quadruped of docs/contact.md standing on its feet (four
+// contacts, a PD law on each of its 12 joints). All take the analytic path
+// (a FreeMotion's rotation rates are its link's ω). jacobian_dual(), whose
+// units cost minutes to compile, is timed beside it for four legs of one and
+// of two joints and the standing quadruped in the -DFLANGE_SCALE_FULL=ON
+// build only.
 #include <cmath>
 
-#include "jacobian.hpp"
-#ifdef FLANGE_SCALE_FULL
 #include <flange/models/legged.hpp>
-#endif
+
+#include "jacobian.hpp"
 
 namespace {
 #ifdef FLANGE_SCALE_FULL
-template <int Links>
+constexpr bool full = true;
+#else
+constexpr bool full = false;
+#endif
+
+template <int Legs, int Links, bool WithDual = false>
 void legged(const char* name) {
   using namespace flange;
-  const auto s = models::legged<4, Links>();
+  const auto s = models::legged<Legs, Links>();
   auto x = neutral_state(s);
   for (int i = 0; i < decltype(s)::n_state; ++i) x[i] += 0.1 * std::sin(1.3 * i + 0.4);
   normalize(s, x);
-  jacobian_bench::measure<false>(name, 4 * Links, s, x);
+  jacobian_bench::measure<WithDual>(name, Legs * Links, s, x);
 }
-#endif
 }  // namespace
 
 void jacobian_bench::trees() {
-#ifdef FLANGE_SCALE_FULL
-  legged<1>("tree_legged");
-  legged<2>("tree_legged");
-#endif
+  legged<1, 1>("tree_legged");
+  legged<2, 1>("tree_legged");
+  legged<4, 1, full>("tree_legged");
+  legged<4, 2, full>("tree_legged");
+  legged<4, 4>("tree_legged");
+  {
+    using namespace flange;
+    const auto s = models::legged<4, 3, true>({}, models::crouch_drive{});
+    auto x = models::crouched_state(s);
+    x[1] -= 0.05;  // the feet 1 cm into the ground
+    for (int i = decltype(s)::n_q; i < decltype(s)::n_state; ++i) x[i] = 0.05 * std::sin(1.3 * i + 0.4);
+    measure<full>("quadruped_standing", 12, s, x);
+  }
 }

@@ -1,11 +1,13 @@
-// ∂v̇/∂q, ∂v̇/∂v and ∂v̇/∂t of a tree of one-axis joints, exactly, from the
+// ∂v̇/∂q, ∂v̇/∂v and ∂v̇/∂t of a tree of one-axis joints and balls, exactly, from the
 // derivatives of inverse dynamics (Carpentier and Mansard, "Analytical
 // derivatives of rigid body dynamics algorithms", RSS 2018):
 //
 //   ID(q, v, v̇) = Q(t, q, v)  ⇒  ∂v̇/∂x = M⁻¹·(∂Q/∂x − ∂ID/∂x)  at v̇ = f(t, x)
 //
-// Everything is in world coordinates at the world origin (spatial vectors,
-// angular part first), where moving joint j by q_j turns every quantity of
+// Everything is in world coordinates at a fixed point, link 1's origin at q
+// (spatial vectors, angular part first; the algebra holds about any fixed
+// point, and about the World's origin a base far from it would carry its
+// lever arm into every inertia), where moving joint j by q_j turns every quantity of
 // its subtree by its column s_j: ∂X/∂q_j = s_j × X. With v_p, a_p the
 // velocity and acceleration (−g included) of j's parent, u_j = s_j × v_p,
 // ψ_j = s_j × a_p − u_j × v_p, and over the subtree of link i its composite
@@ -32,15 +34,29 @@
 //
 // The force elements' loads (torques, springs, dampers, world forces,
 // contacts) are computed once by their own code in dual numbers in every
-// direction, turned into wrenches W_L at the world origin; they enter τ_i as
+// direction, turned into wrenches W_L at that point; they enter τ_i as
 // −s_iᵀ·Σ W over i's subtree, whose derivative adds s_iᵀ·∂W/∂x and, for q_j
 // above i, the turn of s_i: −(s_j × s_i)ᵀ·Σ W.
+//
+// The passes run over nodes, one per rate (derivative_nodes): a joint of one
+// rate is a node, and so is each translation of a ball (core/joint.hpp,
+// ball_rates: a Spherical, a FreeMotion), a prismatic column fixed in the
+// parent. A ball's three rotation rates are ω in its link: all three columns
+// are fixed in the link and turn with each of them, and each reads the
+// velocity V before the ball. So they are three nodes in a row whose u and ψ
+// take V's velocity and acceleration, whose pairs take the ancestor's formula
+// both ways (row a, column b of one ball: s_aᵀ·(B·u_b − I·ψ_b)), and whose
+// ∂/∂v reads u_b + ½·s_b × (v_L − v_V) for u_b (the next columns' u do not
+// move with ω). Their directions in q are the link's turns δ about its own
+// axes (Q moving by ½·Q ⊗ (δ, 0)); simulate/jacobian.hpp maps them to the
+// quaternion's four coordinates (R is homogeneous in Q).
 //
 // Which scenes take it (analytic_derivatives<S>): a tree (no loop, nothing
 // floating) of joints of one rate whose column is fixed in their link
 // (Revolute, Prismatic, either way round, axes typed or given at run time,
-// any drive), with any force elements. simulate/jacobian.hpp takes dual
-// numbers for every other scene.
+// any drive) and of balls connected frame_a toward the World, with any force
+// elements. simulate/jacobian.hpp takes dual numbers for every other scene
+// (Universal, Cylindrical, Planar joints, a reversed ball, loops).
 #pragma once
 #include <array>
 #include <cmath>
@@ -82,7 +98,7 @@ FLANGE_INLINE double turn(const Mat2d&, double a) { return a; }
 FLANGE_INLINE Vec3d transpose_times(const Mat3d& T, const Vec3d& a) { return T.transpose() * a; }
 FLANGE_INLINE double transpose_times(double T, double a) { return T * a; }
 
-/// A spatial vector at the world origin, world coordinates: motion
+/// A spatial vector at the passes' fixed point (link 1's origin), world coordinates: motion
 /// (angular a, linear l) or force (torque a, force l), in 3-D (G = space)
 /// or in the plane (G = plane<K>).
 template <class G>
@@ -111,8 +127,8 @@ FLANGE_INLINE spatial<G> force_cross(const spatial<G>& v, const spatial<G>& f) {
   return {cross(v.a, f.a) + cross(v.l, f.l), cross(v.a, f.l)};
 }
 
-/// A rigid body's spatial inertia at the world origin: mass, first moment
-/// h = m·c and rotational inertia about the origin (in the plane: about K),
+/// A rigid body's spatial inertia at the passes' fixed point: mass, first moment
+/// h = m·c and rotational inertia about that point (in the plane: about K),
 /// world coordinates.
 template <class G>
 struct world_inertia {
@@ -389,7 +405,7 @@ FLANGE_INLINE Vec3d lane(const Vec3<dual<double, K>>& x, int c) {
 }
 
 /// A load on a link (torque n about its origin and force f, link
-/// coordinates) as a wrench at the world origin, the link at (R, r).
+/// coordinates) as a wrench at the passes' fixed point, the link at (R, r).
 template <class G, class Rot, class Lin>
 FLANGE_INLINE spatial<G> world_wrench(const Rot& R, const Lin& r, const Vec3d& n, const Vec3d& f) {
   const typename G::lin Rf = R * G::lin_of(f);
@@ -613,7 +629,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   // The force elements' loads on each link by dual numbers in every
   // direction (force elements are written once, generic in their scalar):
   // n about the link's origin and f, link coordinates. As a wrench W_L at the
-  // world origin they enter τ_i as −s_iᵀ·Σ_{L in i's subtree} W_L: into b
+  // passes' fixed point they enter τ_i as −s_iᵀ·Σ_{L in i's subtree} W_L: into b
   // here; their derivatives after the passes, below.
   std::conditional_t<loaded, link_loads<S, DW>, std::array<int, 0>> n_w, f_w;
   std::array<spatial<G>, NN> W_own, W;  // each link's, at its last node; summed over the node's subtree

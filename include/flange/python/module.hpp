@@ -15,7 +15,7 @@
 //   Scene(**parameters)        the scene at these parameters; module functions use Scene()
 //   initial_state(**joints)    joints by name (a number: q; a dict: {"q", "v"}, {"R", "w"}, …)
 //   derivative(t, x[, out])    x of shape (n_state,) or (k, n_state)
-//   jacobian(t, x)             ∂ẋ/∂x, exact (dual numbers)
+//   jacobian(t, x)             ∂ẋ/∂x, exact (flange::jacobian: analytic or dual numbers)
 //   simulate(x0, times, method="dopri5" | "rosenbrock4", atol, rtol, dt, max_rhs_evals)
 //   recover(t, x), energy(x[, t]), momentum(x), bodies()
 //   ensemble(cases, times, x0, recorders, …)   the C++ ensemble engine (oneTBB threads where
@@ -517,9 +517,9 @@ void bind(py::module_& m, Factory) {
   m.def("derivative", [](double t, py::handle x, py::handle out) { return fallback->derivative(t, x, out); },
         py::arg("t"), py::arg("x"), py::arg("out") = py::none(), "ẋ = f(t, x) for a state (n_state,) or states (k, n_state).");
 
-  cls.def("jacobian", &B::jacobian, py::arg("t"), py::arg("x"), "∂ẋ/∂x at (t, x), exact (dual numbers).");
+  cls.def("jacobian", &B::jacobian, py::arg("t"), py::arg("x"), "∂ẋ/∂x at (t, x), exact (analytic on trees of one-axis joints and balls, else dual numbers).");
   m.def("jacobian", [at, pick](double t, py::handle x, const py::object& params) { return pick(at(params)).jacobian(t, x); },
-        py::arg("t"), py::arg("x"), py::arg("params") = py::none(), "∂ẋ/∂x at (t, x), exact (dual numbers).");
+        py::arg("t"), py::arg("x"), py::arg("params") = py::none(), "∂ẋ/∂x at (t, x), exact (analytic on trees of one-axis joints and balls, else dual numbers).");
 
   cls.def("energy", &B::energy, py::arg("x"), py::arg("t") = 0.0, "Kinetic and potential energy at x.");
   m.def("energy", [at, pick](py::handle x, double t, const py::object& params) { return pick(at(params)).energy(x, t); },

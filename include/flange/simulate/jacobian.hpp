@@ -1,6 +1,7 @@
 // The exact Jacobian ∂f/∂x of a scene's derivative (used by rosenbrock4.hpp
-// and linearize.hpp): for a tree of one-axis joints, from the analytic
-// derivatives of inverse dynamics (dynamics/derivatives.hpp); for
+// and linearize.hpp): for a tree of one-axis joints and balls (a Spherical,
+// a floating base's FreeMotion), from the analytic derivatives of inverse
+// dynamics (dynamics/derivatives.hpp); for
 // every other scene by forward-mode dual numbers through the
 // scalar-templated dynamics (jacobian_dual, which is also there for any scene).
 //
