@@ -22,6 +22,7 @@ TEST_CASE("a free body's analytic Jacobian: the quaternion's rows and columns") 
   const auto s = scene(World<"world">({.g = {0.4, -9.81, 1.2}}), FreeMotion<"base">{},
                        Body<"b", cm::offset>({.m = 2.0, .J = test::random_inertia(rng), .r_cm = {0.1, 0.2, -0.05}}),
                        connect<"world.frame_b", "base.frame_a">, connect<"base.frame_b", "b.frame_a">);
+  STATIC_REQUIRE(detail::jacobian_takes_analytic<std::remove_cvref_t<decltype(s)>>());
   agree(s, rng);
   // Far from the World's origin: the passes run about the base.
   auto x = test::random_state(s, rng);

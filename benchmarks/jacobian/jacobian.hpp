@@ -2,7 +2,10 @@
 // derivative, jacobian() and, in the full build, jacobian_dual() timed in
 // turns in one process, medians of 15 rounds, one line per scene:
 //
-//   jacobian <scene> N=<n> derivative_ns=<x> jacobian_ns=<y> ratio=<y/x> [dual_ns=<z>] path=<analytic|dual>
+//   jacobian <scene> N=<n> derivative_ns=<x> jacobian_ns=<y> ratio=<y/x> [dual_ns=<z>] [analytic_ns=<w>] path=<analytic|dual>
+//
+// analytic_ns: for a scene the analytic derivatives cover but jacobian()
+// takes dual numbers for (one link with force elements), their time.
 #pragma once
 #include <algorithm>
 #include <cstdio>
@@ -51,17 +54,26 @@ void measure(const char* name, int n, const S& s, State x) {
     if constexpr (WithDual) sink += flange::jacobian_dual(s, 0.0, x)(S::n_state - 1, 0);
     nudge();
   };
+  constexpr bool other = WithDual && !analytic && flange::detail::analytic_derivatives<S>();
+  auto passes = [&] {
+    if constexpr (other) sink += flange::detail::jacobian_analytic(s, 0.0, x)(S::n_state - 1, 0);
+    nudge();
+  };
   const long nd = rounds::calls_for(derivative), nj = rounds::calls_for(fast),
-             nu = WithDual ? rounds::calls_for(dual) : 1;
-  std::vector<double> td, tj, tu;
+             nu = WithDual ? rounds::calls_for(dual) : 1, na = other ? rounds::calls_for(passes) : 1;
+  std::vector<double> td, tj, tu, ta;
   for (int r = 0; r < 15; ++r) {
     td.push_back(rounds::block_ns(derivative, nd));
     tj.push_back(rounds::block_ns(fast, nj));
     if (WithDual) tu.push_back(rounds::block_ns(dual, nu));
+    if (other) ta.push_back(rounds::block_ns(passes, na));
   }
   const double d = rounds::median(td), j = rounds::median(tj);
   const char* path = analytic ? "analytic" : "dual";
-  if (WithDual)
+  if (other)
+    std::printf("jacobian %s N=%d derivative_ns=%.1f jacobian_ns=%.1f ratio=%.2f dual_ns=%.1f analytic_ns=%.1f path=%s\n",
+                name, n, d, j, j / d, rounds::median(tu), rounds::median(ta), path);
+  else if (WithDual)
     std::printf("jacobian %s N=%d derivative_ns=%.1f jacobian_ns=%.1f ratio=%.2f dual_ns=%.1f path=%s\n", name, n, d, j,
                 j / d, rounds::median(tu), path);
   else

@@ -1,7 +1,10 @@
 // The Jacobian benchmark's named scenes (jacobian.hpp): the paper's robot arm
 // (its motor a Torque element) and gantry crane, a four-bar (a loop: dual
 // numbers), the tutorial's spatial arm (a PD law on each joint) and, where
-// flange-urdf is built, the same arm read from its URDF file.
+// flange-urdf is built, the same arm read from its URDF file; a free body,
+// and the ball of models/ball.hpp on the ground (one link with a contact:
+// dual numbers).
+#include <flange/models/ball.hpp>
 #include <flange/models/linkages.hpp>
 #include <flange/models/paper.hpp>
 
@@ -22,6 +25,15 @@ void jacobian_bench::named_scenes() {
     std::array<double, 6> x{q[0], q[1], q[2], 3.0, 0, 0};
     close_loops<"crank_pivot">(fb, x);
     measure<true>("fourbar", 3, fb, x);
+  }
+  {
+    const auto body = scene(World<"world">{}, FreeMotion<"fly">{},
+                            Body<"b", cm::offset>({.m = 1, .J = Vec3d(0.1, 0.2, 0.3).asDiagonal(), .r_cm = {0.1, 0, 0}}),
+                            connect<"world.frame_b", "fly.frame_a">, connect<"fly.frame_b", "b.frame_a">);
+    const std::array<double, 13> x{0, 0.099, 0, 0, 0, 0, 1, 0.5, -0.1, 0.2, 1.0, 2.0, -3.0};
+    measure<true>("free_body", 1, body, x);
+    // Rolling and slipping 1 mm into the ground.
+    measure<true>("ball_contact", 1, models::ball_on_ground(), x);
   }
   const auto arm = spatial_arm::make_scene();
   measure<true>("spatial_arm", 3, arm, initial_state<"elbow">(arm, {.q = 0.6, .v = 0.4}));

@@ -70,15 +70,17 @@ jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen
 
 namespace detail {
 /// Whether jacobian() takes the analytic derivatives: wherever they apply,
-/// but for a scene of one rate with force elements, whose loads' dual
-/// numbers and passes cost more than dual numbers through its derivative (the
-/// paper's arm: 122 ns against 67 ns; docs/performance.md, "The Jacobian").
+/// but for a scene of one link with force elements, whose loads' dual
+/// numbers (in every direction) and passes cost more than dual numbers
+/// through its derivative: the paper's arm 122 against 67 ns, a free body
+/// on one contact 7.0 against 6.7 µs, on a box's eight 13.5 against 11.4 µs
+/// (docs/performance.md, "The Jacobian").
 template <class S>
 constexpr bool jacobian_takes_analytic() {
   if constexpr (!analytic_derivatives<S>()) {
     return false;
   } else {
-    return S::n_v > 1 || !has_link_loads<S>();
+    return S::tree.n_links > 2 || !has_link_loads<S>();
   }
 }
 
