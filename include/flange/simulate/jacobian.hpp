@@ -72,9 +72,9 @@ namespace detail {
 /// Whether jacobian() takes the analytic derivatives: wherever they apply,
 /// but for a scene of one link with force elements, whose loads' dual
 /// numbers (in every direction) and passes cost more than dual numbers
-/// through its derivative: the paper's arm 122 against 67 ns, a free body
-/// on one contact 7.0 against 6.7 µs, on a box's eight 13.5 against 11.4 µs
-/// (docs/performance.md, "The Jacobian").
+/// through its derivative: the paper's arm 157 against 86 ns, a ball on the
+/// ground 3.8 against 3.5 µs (build/benchmarks/jacobian's analytic_ns and
+/// dual_ns; docs/performance.md, "The Jacobian").
 template <class S>
 constexpr bool jacobian_takes_analytic() {
   if constexpr (!analytic_derivatives<S>()) {
