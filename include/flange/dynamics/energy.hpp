@@ -12,9 +12,11 @@
 // two functions, so the two cannot disagree.
 #pragma once
 #include <array>
+#include <type_traits>
 
 #include "flange/core/frame_kinematics.hpp"
 #include "flange/detail/inline.hpp"
+#include "flange/detail/lazy.hpp"
 #include "flange/dynamics/kinematics.hpp"
 #include "flange/scene/named_state.hpp"
 
@@ -33,20 +35,59 @@ struct energy_terms {
 
 namespace detail {
 
-/// Frame f's pose and velocity (r, R, v, ω) from its link's pose: a frame
-/// sits at its connection set's constant pose in its link. Its accelerations
-/// (a, ω̇) are not set.
-template <class S, class T, class LinkPoses>
-FLANGE_INLINE void frame_pose_and_velocity(const S& scene, const LinkPoses& lk, int f, frame_kinematics<T>& k) {
-  const int s = S::topology.set_of[f];
-  const auto& L = lk[S::tree.set_link[s]];
-  const Vec3<T> p = scene.model().set_offset[s].template cast<T>();
-  const Mat3<T> Rs = scene.model().set_rotation[s].template cast<T>();
-  k.R = Rs * L.R;
-  k.w = Rs * L.w;
-  k.r = point_position(L, p);
-  k.v = point_velocity(L, p);
+/// Every frame's pose and velocity (r, R, v, ω) from its link's: a frame
+/// sits at its connection set's constant pose in its link (set_of: each
+/// frame's set; set_link: each set's link; set_offset, set_rotation: the
+/// set's place in its link). With wd and a (each link's ω̇ and r̈ in link
+/// coordinates, a carrying −g), also the frames' accelerations (ω̇, r̈);
+/// else those are left unset. Scene-independent: one copy at double for
+/// every scene (FLANGE_COMMON).
+template <class T>
+void place_frames(int n_frames, const int* set_of, const int* set_link, const Vec3d* set_offset,
+                  const Mat3d* set_rotation, const link_pose<T>* links, const Vec3<T>* wd, const Vec3<T>* a,
+                  const Vec3<T>& g, frame_kinematics<T>* frames) {
+  for (int f = 0; f < n_frames; ++f) {
+    const int s = set_of[f], l = set_link[s];
+    const link_pose<T>& L = links[l];
+    frame_kinematics<T>& k = frames[f];
+    const Vec3<T> p = set_offset[s].template cast<T>();
+    const Mat3<T> Rs = set_rotation[s].template cast<T>();
+    k.R = Rs * L.R;
+    k.w = Rs * L.w;
+    k.r = L.r + L.R.transpose() * p;
+    const Vec3<T> wp = L.w.cross(p);
+    k.v = L.v + L.R.transpose() * wp;
+    if (wd) {
+      k.wd = Rs * wd[l];
+      k.a = L.R.transpose() * (a[l] + wd[l].cross(p) + L.w.cross(wp)) + g;  // a carries −g
+    }
+  }
 }
+FLANGE_COMMON(void place_frames<double>(int, const int*, const int*, const Vec3d*, const Mat3d*,
+                                        const link_pose<double>*, const Vec3d*, const Vec3d*, const Vec3d&,
+                                        frame_kinematics<double>*))
+
+/// place_frames for a scene's frames, from its links' poses (and, with wd
+/// and a, their accelerations).
+template <class S, class T>
+FLANGE_INLINE void place_scene_frames(const S& scene, const std::array<link_pose<T>, S::tree.n_links>& links,
+                                      const Vec3<T>* wd, const Vec3<T>* a, const Vec3<T>& g,
+                                      frame_kinematics<T>* frames) {
+  place_frames<T>(S::n_frames, S::topology.set_of.data(), S::tree.set_link.data(), scene.model().set_offset.data(),
+                  scene.model().set_rotation.data(), links.data(), wd, a, g, frames);
+}
+
+/// A body's kinetic energy and gravity's potential (m, r_CM and J about the
+/// centre of mass in frame_a, whose motion is k), added to e.
+template <class T>
+void add_body_energy(const T& m, const Vec3<T>& cm, const Mat3<T>& J, const frame_kinematics<T>& k,
+                     const Vec3<T>& g, energy_terms<T>& e) {
+  const Vec3<T> vcm = k.v + k.R.transpose() * k.w.cross(cm);
+  e.kinetic += T(0.5) * m * vcm.squaredNorm() + T(0.5) * k.w.dot(J * k.w);
+  e.gravity_potential -= m * g.dot(k.r + k.R.transpose() * cm);
+}
+FLANGE_COMMON(void add_body_energy<double>(const double&, const Vec3d&, const Mat3d&,
+                                           const frame_kinematics<double>&, const Vec3d&, energy_terms<double>&))
 
 /// The energies of the scene whose frames have the poses and velocities in
 /// frames (by global frame index), at joint state js (q: the coordinates).
@@ -65,12 +106,8 @@ energy_terms<T> energy_of(const S& scene, const T& t, const JS& js, const T* q, 
     if constexpr (requires { c.potential_energy(t, js, frames); })
       e.elastic_potential += c.potential_energy(t, js, frames + fb);
     if constexpr (carries_body<C>) {
-      const auto& k = frames[fb];
-      const Vec3<T> cm = c.r_cm().template cast<T>();
-      const Vec3<T> vcm = k.v + k.R.transpose() * k.w.cross(cm);
-      const T m = T(c.m());
-      e.kinetic += T(0.5) * m * vcm.squaredNorm() + T(0.5) * k.w.dot(c.J().template cast<T>() * k.w);
-      e.gravity_potential -= m * g.dot(k.r + k.R.transpose() * cm);
+      if constexpr (std::is_same_v<T, double>) add_body_energy<T>(c.m(), c.r_cm(), c.J(), frames[fb], g, e);
+      else add_body_energy<T>(T(c.m()), c.r_cm().template cast<T>(), c.J().template cast<T>(), frames[fb], g, e);
     }
   });
   return e;
@@ -89,8 +126,8 @@ struct frames_at_state {
     for (int i = 0; i < S::n_q; ++i) q[i] = x[i];
     for (int i = 0; i < S::n_v; ++i) v[i] = x[S::n_q + i];
     const auto motions = link_motions<spatial_algebra, T, true>(scene, q.data());
-    const auto lk = link_poses<S>(motions, v.data());
-    for (int f = 0; f < S::n_frames; ++f) frame_pose_and_velocity(scene, lk, f, frames[f]);
+    place_scene_frames<S, T>(scene, link_poses<S>(motions, v.data()), nullptr, nullptr, Vec3<T>::Zero(),
+                             frames.data());
   }
 };
 

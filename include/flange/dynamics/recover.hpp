@@ -63,6 +63,111 @@ inline constexpr auto internal_names = [] {
 }();
 }  // namespace detail
 
+namespace detail {
+/// One step of the sweep of cut forces from the leaves inward: in connection
+/// set `set` the flows at every frame but `child` are known, so the set's
+/// balance gives child's; the edge (a joint or a rigid component) from child
+/// to `parent`, its other frame, then gives parent's by its force and moment
+/// balance.
+struct cut_step {
+  int set, child, parent;
+};
+/// A scene's steps, leaves first, and last the World's set (child: the
+/// World's frame, parent: none).
+template <class S>
+inline constexpr auto cut_steps = [] {
+  constexpr auto& tree = S::tree;
+  constexpr auto& tab = S::table;
+  std::array<cut_step, S::tree.n_tree_sets> out{};
+  int k = 0;
+  for (int i = tree.n_tree_sets - 1; i >= 1; --i) {
+    const int s = tree.set_order[i];
+    const bool root = tree.set_parent[s] < 0;
+    const int e = root ? tree.link_joint[tree.set_link[s]] : tree.set_edge[s];
+    const int dir = root ? tree.link_dir[tree.set_link[s]] : tree.set_edge_dir[s];
+    out[k++] = {s, tab.frame_base[e] + (dir > 0 ? 1 : 0), tab.frame_base[e] + (dir > 0 ? 0 : 1)};
+  }
+  const int wf = tab.frame_base[S::topology.world];
+  out[k] = {S::topology.set_of[wf], wf, -1};
+  return out;
+}();
+
+/// The cut forces of every tree edge's frames, from the flows already in cut
+/// (bodies, force elements, cut joints; zero elsewhere) by the steps. An
+/// edge's relative pose comes from its frames' poses; body holds, at frame_a
+/// of an edge that carries a body, that body's flows (zero elsewhere).
+/// Scene-independent: one copy at double for every scene (FLANGE_COMMON).
+template <class T>
+void sweep_cut_forces(const cut_step* steps, int n_steps, const int* set_of, int n_frames,
+                      const frame_kinematics<T>* frames, const wrench<T>* body, wrench<T>* cut) {
+  for (int i = 0; i < n_steps; ++i) {
+    const cut_step st = steps[i];
+    wrench<T> o{Vec3<T>::Zero(), Vec3<T>::Zero()};
+    for (int f = 0; f < n_frames; ++f)
+      if (set_of[f] == st.set && f != st.child) {
+        o.f += cut[f].f;
+        o.n += cut[f].n;
+      }
+    cut[st.child] = {-o.f, -o.n};
+    if (st.parent < 0) continue;
+    const bool child_is_b = st.child > st.parent;
+    const frame_kinematics<T>& fa = frames[child_is_b ? st.parent : st.child];
+    const frame_kinematics<T>& fb = frames[child_is_b ? st.child : st.parent];
+    const pose<T> x{fb.R * fa.R.transpose(), fa.R * (fb.r - fa.r)};
+    const wrench<T>& B = body[child_is_b ? st.parent : st.child];
+    if (child_is_b) {
+      const wrench<T> a = flows_a_from_b(x, cut[st.child]);
+      cut[st.parent] = {a.f + B.f, a.n + B.n};
+    } else {
+      cut[st.parent] = flows_b_from_a(x, wrench<T>{cut[st.child].f - B.f, cut[st.child].n - B.n});
+    }
+  }
+}
+FLANGE_COMMON(void sweep_cut_forces<double>(const cut_step*, int, const int*, int, const frame_kinematics<double>*,
+                                            const wrench<double>*, wrench<double>*))
+
+/// The frames' variables into the flattened DAE vectors y and ẏ (zeroed
+/// first): frame f's r, R, F and M at stride·f + offset[0 … 3], and ṙ and Ṙ.
+template <class T>
+void flatten_frames(int n_frames, int stride, const int* offset, const frame_kinematics<T>* frames,
+                    const wrench<T>* cut, T* y, T* yd, int n) {
+  for (int i = 0; i < n; ++i) y[i] = yd[i] = T(0);
+  for (int f = 0; f < n_frames; ++f) {
+    const frame_kinematics<T>& k = frames[f];
+    T* o = y + stride * f;
+    T* od = yd + stride * f;
+    Eigen::Map<Vec3<T>>(o + offset[0]) = k.r;
+    Eigen::Map<Mat3<T>>(o + offset[1]) = k.R;
+    Eigen::Map<Vec3<T>>(o + offset[2]) = cut[f].f;
+    Eigen::Map<Vec3<T>>(o + offset[3]) = cut[f].n;
+    Eigen::Map<Vec3<T>>(od + offset[0]) = k.v;
+    Eigen::Map<Mat3<T>>(od + offset[1]) = -tilde<T>(k.w) * k.R;
+  }
+}
+FLANGE_COMMON(void flatten_frames<double>(int, int, const int*, const frame_kinematics<double>*,
+                                          const wrench<double>*, double*, double*, int))
+
+/// An internal variable's value and rate into y and ẏ at y and yd: a
+/// 3-vector, or a rotation (column-major, as the DAE vector holds it).
+template <class T>
+void put_vector(T* y, T* yd, const Vec3<T>& value, const Vec3<T>& rate) {
+  for (int i = 0; i < 3; ++i) {
+    y[i] = value[i];
+    yd[i] = rate[i];
+  }
+}
+FLANGE_COMMON(void put_vector<double>(double*, double*, const Vec3d&, const Vec3d&))
+template <class T>
+void put_matrix(T* y, T* yd, const Mat3<T>& value, const Mat3<T>& rate) {
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      y[3 * j + i] = value(i, j);
+      yd[3 * j + i] = rate(i, j);
+    }
+}
+FLANGE_COMMON(void put_matrix<double>(double*, double*, const Mat3d&, const Mat3d&))
+}  // namespace detail
+
 /// Every variable of the DAE at one instant, with the energies
 /// (energy_terms: kinetic, gravity_potential, elastic_potential).
 template <class S, class T>
@@ -192,24 +297,18 @@ template <class S, class T = double, class State>
 
   // Frames: a frame sits at its set's constant pose in its link (its pose
   // and velocity as energy() has them, energy.hpp).
-  for (int f = 0; f < NF; ++f) {
-    auto& k = sol.frames[f];
-    detail::frame_pose_and_velocity(scene, lk, f, k);
-    const int s = topo.set_of[f];
-    const int l = tree.set_link[s];
-    const auto& L = lk[l];
-    const Vec3<T> p = scene.model().set_offset[s].template cast<T>();
-    const Mat3<T> Rs = scene.model().set_rotation[s].template cast<T>();
-    k.wd = Rs * wd[l];
-    k.a = detail::point_acceleration(L, p, wd[l], a[l]) + g;  // a carries −g
-  }
+  detail::place_scene_frames<S, T>(scene, lk, wd.data(), a.data(), g, sol.frames.data());
 
   // Flows of bodies and force elements, from their own equations.
   for (auto& c : sol.cut) c = {Vec3<T>::Zero(), Vec3<T>::Zero()};
+  std::array<wrench<T>, NF> edge_body;  // a rigid edge's body's flows at its frame_a
+  for (auto& w : edge_body) w = {Vec3<T>::Zero(), Vec3<T>::Zero()};
   detail::for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
     using C = std::remove_cvref_t<decltype(c)>;
     constexpr int fb = tab.frame_base[decltype(i)::value];
     if constexpr (C::kind == role::body) sol.cut[fb] = c.flows(sol.frames[fb], g);
+    if constexpr ((C::kind == role::joint || C::kind == role::rigid) && carries_body<C>)
+      edge_body[fb] = c.flows(sol.frames[fb], g);
     if constexpr (C::kind == role::force) {
       // The element's flows are minus what it exerts, in frame coordinates.
       constexpr int nf = int(C::frames.size());
@@ -243,64 +342,15 @@ template <class S, class T = double, class State>
       sol.cut[fa + 1] = {-(Rb * on_b.f), -(Rb * on_b.n)};
     });
   }
-  // Edges (joints and rigid components) from the leaves inward.
-  auto others_in_set = [&](int s, int except) FLANGE_INLINE_LAMBDA {
-    wrench<T> w{Vec3<T>::Zero(), Vec3<T>::Zero()};
-    for (int f = 0; f < NF; ++f)
-      if (topo.set_of[f] == s && f != except) {
-        w.f += sol.cut[f].f;
-        w.n += sol.cut[f].n;
-      }
-    return w;
-  };
-  for (int i = tree.n_tree_sets - 1; i >= 1; --i) {
-    const int s = tree.set_order[i];
-    const bool root = tree.set_parent[s] < 0;
-    const int e = root ? tree.link_joint[tree.set_link[s]] : tree.set_edge[s];
-    const int dir = root ? tree.link_dir[tree.set_link[s]] : tree.set_edge_dir[s];
-    const int child = tab.frame_base[e] + (dir > 0 ? 1 : 0), parent = tab.frame_base[e] + (dir > 0 ? 0 : 1);
-    const wrench<T> o = others_in_set(s, child);
-    sol.cut[child] = {-o.f, -o.n};
-    detail::visit_component(scene, e, [&](const auto& c) FLANGE_INLINE_LAMBDA {
-      using C = std::remove_cvref_t<decltype(c)>;
-      if constexpr (C::kind == role::joint || C::kind == role::rigid) {
-        const pose<T> x = [&]() FLANGE_INLINE_LAMBDA {
-          if constexpr (C::kind == role::joint) return relative_pose_of(c, sol.q.data() + tree.q_offset[e]);
-          else return c.template relative_pose<T>();
-        }();
-        if constexpr (carries_body<C>) {
-          // A rigid edge with mass: its body's wrench at frame_a joins frame_a's flows.
-          const wrench<T> body = c.flows(sol.frames[tab.frame_base[e]], g);
-          if (dir > 0) {
-            const wrench<T> a = flows_a_from_b(x, sol.cut[child]);
-            sol.cut[parent] = {a.f + body.f, a.n + body.n};
-          } else {
-            sol.cut[parent] = flows_b_from_a(x, wrench<T>{sol.cut[child].f - body.f, sol.cut[child].n - body.n});
-          }
-        } else {
-          sol.cut[parent] = dir > 0 ? flows_a_from_b(x, sol.cut[child]) : flows_b_from_a(x, sol.cut[child]);
-        }
-      }
-    });
-  }
-  {
-    const int wf = tab.frame_base[topo.world];
-    const wrench<T> o = others_in_set(topo.set_of[wf], wf);
-    sol.cut[wf] = {-o.f, -o.n};
-  }
+  // Edges (joints and rigid components) from the leaves inward, then the
+  // World's frame.
+  constexpr auto& steps = detail::cut_steps<S>;
+  detail::sweep_cut_forces<T>(steps.data(), int(steps.size()), topo.set_of.data(), NF, sol.frames.data(),
+                              edge_body.data(), sol.cut.data());
 
   // The flattened DAE vector.
-  sol.y.setZero();
-  sol.yd.setZero();
-  for (int f = 0; f < NF; ++f) {
-    const auto& k = sol.frames[f];
-    sol.y.template segment<3>(S::frame_offset(f, 0)) = k.r;
-    Eigen::Map<Mat3<T>>(sol.y.data() + S::frame_offset(f, 1)) = k.R;
-    sol.y.template segment<3>(S::frame_offset(f, 2)) = sol.cut[f].f;
-    sol.y.template segment<3>(S::frame_offset(f, 3)) = sol.cut[f].n;
-    sol.yd.template segment<3>(S::frame_offset(f, 0)) = k.v;
-    Eigen::Map<Mat3<T>>(sol.yd.data() + S::frame_offset(f, 1)) = -tilde<T>(k.w) * k.R;
-  }
+  detail::flatten_frames<T>(NF, frame_storage, frame_var_offset.data(), sol.frames.data(), sol.cut.data(),
+                            sol.y.data(), sol.yd.data(), int(sol.y.size()));
   detail::for_each_component(scene, [&](auto i, const auto& c) FLANGE_INLINE_LAMBDA {
     using C = std::remove_cvref_t<decltype(c)>;
     constexpr int I = decltype(i)::value;
@@ -314,11 +364,9 @@ template <class S, class T = double, class State>
         sol.y(o) = value;
         sol.yd(o) = rate;
       } else if constexpr (V::SizeAtCompileTime == 3) {
-        sol.y.template segment<3>(o) = value;
-        sol.yd.template segment<3>(o) = rate;
+        detail::put_vector<T>(sol.y.data() + o, sol.yd.data() + o, value, rate);
       } else {
-        Eigen::Map<Mat3<T>>(sol.y.data() + o) = value;
-        Eigen::Map<Mat3<T>>(sol.yd.data() + o) = rate;
+        detail::put_matrix<T>(sol.y.data() + o, sol.yd.data() + o, value, rate);
       }
     };
     if constexpr (C::kind == role::joint && tree.cut_of[I] < 0) {
