@@ -91,6 +91,26 @@ TEST_CASE("force elements: the analytic Jacobian equals the dual-number Jacobian
   STATIC_REQUIRE(!detail::jacobian_takes_analytic<std::remove_cvref_t<decltype(arm)>>());
   STATIC_REQUIRE(detail::jacobian_takes_analytic<decltype(models::chain<1, models::runtime_axes>({}))>());
   agree(models::robot_arm({}, [](auto t) { return Vec3<decltype(t)>(0.0 * t, 0.0 * t, 0.5 * t); }), rng);
+  // In space, force elements that read their links' motions and the time
+  // alone take dual numbers in those links' motions (local_loads: the random
+  // trees above); one that reads the joint state, dual numbers in every
+  // direction of the state, as the planar scenes' loads do.
+  STATIC_REQUIRE(!detail::local_loads<std::remove_cvref_t<decltype(arm)>>());
+  STATIC_REQUIRE(detail::local_loads<decltype(models::tree<models::random_tree_shape(5, 8, false)>(
+                     test::tree_params<8>(rng)))>());
+  const auto pd = scene(
+      World<"world">({.g = {0.3, -9.81, 0.2}}), Revolute<"j1", axis::x>{},
+      FixedTranslation<"r1">({.d = {0.3, 0.1, 0}}), Body<"b1">({.m = 1.0, .J = test::random_inertia(rng)}),
+      Revolute<"j2", axis::y>{}, FixedTranslation<"r2">({.d = {0.2, 0, 0.1}}),
+      Body<"b2">({.m = 0.7, .J = test::random_inertia(rng)}), torque<"motor">([](auto t, const auto& x) {
+        using T = decltype(t);
+        return Vec3<T>(-2.0 * q<"j1">(x), T(0.1) * t, -0.5 * v<"j2">(x) + 0.3 * q<"j2">(x));
+      }),
+      connect<"world.frame_b", "j1.frame_a">, connect<"world.frame_b", "motor.frame_a">,
+      connect<"j1.frame_b", "r1.frame_a">, connect<"r1.frame_b", "b1.frame_a">, connect<"r1.frame_b", "j2.frame_a">,
+      connect<"j2.frame_b", "r2.frame_a">, connect<"r2.frame_b", "b2.frame_a">, connect<"r2.frame_b", "motor.frame_b">);
+  STATIC_REQUIRE(!detail::local_loads<std::remove_cvref_t<decltype(pd)>>());
+  agree(pd, rng);
 }
 
 TEST_CASE("a planar scene's Jacobian in the plane's arithmetic equals the dual numbers in 3-D") {

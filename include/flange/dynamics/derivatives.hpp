@@ -33,10 +33,18 @@
 // solve of M with 2N + 1 right-hand sides (O(N³) on a chain).
 //
 // The force elements' loads (torques, springs, dampers, world forces,
-// contacts) are computed once by their own code in dual numbers in every
-// direction, turned into wrenches W_L at that point; they enter τ_i as
-// −s_iᵀ·Σ W over i's subtree, whose derivative adds s_iᵀ·∂W/∂x and, for q_j
-// above i, the turn of s_i: −(s_j × s_i)ᵀ·Σ W.
+// contacts) are computed by their own code in dual numbers, turned into
+// wrenches W_L at that point; they enter τ_i as −s_iᵀ·Σ W over i's subtree,
+// whose derivative adds s_iᵀ·∂W/∂x and, for q_j above i, the turn of s_i:
+// −(s_j × s_i)ᵀ·Σ W. In space, where no element reads the joint state
+// (local_loads), each element's dual numbers run in the motions of the links
+// it sits on alone, 12 directions a link (a turn and a shift of its pose, a
+// change of its twist) and the time, 13 for a contact with the ground
+// whatever the scene's size; the columns carry them to the state's
+// directions (q_j of an ancestor of link P moves P by s_j and changes its
+// twist v_P by s_j × v_P − u_j; v_j changes the twist by s_j). Otherwise
+// (a load that reads the state, a planar scene) they run in every direction
+// of the state, through the whole tree's kinematics.
 //
 // The passes run over nodes, one per rate (derivative_nodes): a joint of one
 // rate is a node, and so is each translation of a ball (core/joint.hpp,
@@ -412,6 +420,88 @@ FLANGE_INLINE spatial<G> world_wrench(const Rot& R, const Lin& r, const Vec3d& n
   return {turn(R, G::ang_of(n)) + cross(r, Rf), Rf};
 }
 
+/// Whether the loads of every force element that acts on a link are a
+/// function of its own links' motions and the time alone (none reads the
+/// joint state: element_reads_state), in 3-D: their derivatives then come
+/// from dual numbers in those links' motions (local_lanes), 12 per link and
+/// one for the time, rather than in every direction of the state.
+template <class S>
+constexpr bool local_loads() {
+  if constexpr (!std::is_same_v<geometry_t<S>, space>) {
+    return false;
+  } else {
+    return []<int... C>(std::integer_sequence<int, C...>) {
+      return (true && ... && [] {
+        using Comp = typename S::template component_type<C>;
+        if constexpr (Comp::kind == role::force) {
+          if constexpr (force_acts<S, C>()) return !element_reads_state<Comp>();
+          else return true;
+        } else {
+          return true;
+        }
+      }());
+    }(std::make_integer_sequence<int, S::n_components>{});
+  }
+}
+
+/// The links other than the World that force element C's frames sit on,
+/// each once: link[0 … count − 1].
+template <class S, int C>
+struct element_links {
+  static constexpr auto frame_links = force_links<S, C>();
+  static constexpr auto table = [] {
+    std::pair<std::array<int, frame_links.size()>, int> r{};
+    for (int k = 0; k < int(frame_links.size()); ++k) {
+      bool seen = frame_links[k] == 0;
+      for (int j = 0; j < r.second; ++j) seen = seen || r.first[j] == frame_links[k];
+      if (!seen) r.first[r.second++] = frame_links[k];
+    }
+    return r;
+  }();
+  static constexpr int count = table.second;
+  static constexpr const auto& link = table.first;
+  /// The block of link L among them (0 for the World's frames, which read none).
+  static constexpr int block_of(int L) {
+    for (int j = 0; j < count; ++j)
+      if (table.first[j] == L) return j;
+    return 0;
+  }
+};
+
+/// A link's pose and motion (velocity in link coordinates) as dual numbers
+/// in 12 directions from lane b: the link turned by ε_θ and moved by ε_p (a
+/// twist at the passes' fixed point, world coordinates), then its twist V
+/// there changed by (δω, δv). Rw: link → world; r: its origin from the fixed
+/// point; o: the fixed point from the World's origin.
+template <class D>
+link_pose<D, velocity_in::link> local_lanes(const Mat3d& Rw, const Vec3d& r, const Vec3d& o,
+                                            const spatial<space>& V, int b) {
+  Mat3<D> Rd;
+  Vec3<D> rd, w, vo;
+  for (int i = 0; i < 3; ++i) {
+    rd[i] = D(r[i]);
+    w[i] = D::variable(V.a[i], b + 6 + i);
+    vo[i] = D::variable(V.l[i], b + 9 + i);
+    rd[i].d[b + 3 + i] = 1;
+    for (int j = 0; j < 3; ++j) Rd(i, j) = D(Rw(i, j));
+  }
+  for (int k = 0; k < 3; ++k) {
+    // ∂/∂ε_θk: e_k × (each column of Rw, and r)
+    const Vec3d e = Vec3d::Unit(k), er = cross(e, r);
+    for (int j = 0; j < 3; ++j) {
+      const Vec3d c = cross(e, Vec3d(Rw.col(j)));
+      for (int i = 0; i < 3; ++i) Rd(i, j).d[b + k] = c[i];
+    }
+    for (int i = 0; i < 3; ++i) rd[i].d[b + k] = er[i];
+  }
+  link_pose<D, velocity_in::link> P;
+  P.R = Rd.transpose();
+  P.r = rd + o.template cast<D>();
+  P.w = P.R * w;
+  P.v = P.R * (vo + w.cross(rd));
+  return P;
+}
+
 /// The matrix acceleration_derivatives fills: a row per rate, in link order.
 template <class S>
 using derivative_rows = Eigen::Matrix<double, S::n_v, 2 * S::n_v + 1, Eigen::RowMajor>;
@@ -485,10 +575,8 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   // passes hold in any fixed frame, and a base far from the World's origin
   // would otherwise carry its lever arm (m·|r|²) into every inertia, where
   // a light link's few 1e-4 kg m² are lost to round-off.
-  {
-    const typename G::lin r1 = r[1];
-    for (int L = 1; L < NL; ++L) r[L] -= r1;
-  }
+  const typename G::lin r1 = r[1];
+  for (int L = 1; L < NL; ++L) r[L] -= r1;
   vel[0] = acc[0] = {G::zero_ang(), G::lin::Zero()};
   if constexpr (S::has_gravity) acc[0].l = G::lin_of(scene.model().minus_g);
   for (int n = 1; n < NN; ++n) {
@@ -565,11 +653,12 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   using reading = state_reading_links<S>;
   using DW = dual<double, 2 * N + 1>;
   constexpr auto loads = load_flags<S>::value;
-  constexpr bool loaded = has_link_loads<S>();
+  constexpr bool loaded = has_link_loads<S>(), local = loaded && local_loads<S>();
   // The state and the time in every direction, for the drives that read the
-  // state and the force elements: q's directions by rate, a ball's
-  // quaternion moving by ½·Q ⊗ (e_k, 0) in its rotation rate k's.
-  constexpr bool wide = reading::count > 0 || loaded;
+  // state and the force elements that do not take local lanes: q's
+  // directions by rate, a ball's quaternion moving by ½·Q ⊗ (e_k, 0) in its
+  // rotation rate k's.
+  constexpr bool wide = reading::count > 0 || (loaded && !local);
   std::array<DW, wide ? S::n_q : 0> qw;
   std::array<DW, wide ? N : 0> vw;
   if constexpr (wide) {
@@ -626,23 +715,99 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
     });
   }
 
-  // The force elements' loads on each link by dual numbers in every
-  // direction (force elements are written once, generic in their scalar):
-  // n about the link's origin and f, link coordinates. As a wrench W_L at the
-  // passes' fixed point they enter τ_i as −s_iᵀ·Σ_{L in i's subtree} W_L: into b
-  // here; their derivatives after the passes, below.
-  std::conditional_t<loaded, link_loads<S, DW>, std::array<int, 0>> n_w, f_w;
+  // The force elements' loads on each link, as wrenches W_L at the passes'
+  // fixed point: they enter τ_i as −s_iᵀ·Σ_{L in i's subtree} W_L, into b
+  // here; their derivatives after the passes, below. Force elements are
+  // written once, generic in their scalar, and differentiated by dual
+  // numbers: where none reads the joint state (local_loads), each element in
+  // the motions of the links it sits on (local_lanes: 12 directions a link
+  // and the time), carried to the state's directions through the columns
+  // (moving q_j of an ancestor of link P moves P by s_j and changes its
+  // twist v_P by s_j × v_P − u_j; moving v_j changes it by s_j), into dL;
+  // else all of them in every direction of the state (n about the link's
+  // origin and f, link coordinates).
+  std::conditional_t<loaded && !local, link_loads<S, DW>, std::array<int, 0>> n_w, f_w;
   std::array<spatial<G>, NN> W_own, W;  // each link's, at its last node; summed over the node's subtree
+  using load_rows = Eigen::Matrix<double, N, 2 * N + 1, Eigen::RowMajor>;
+  std::conditional_t<local, load_rows, std::array<int, 0>> dL;
   if constexpr (loaded) {
-    const auto xw = state_view(scene, qw.data(), vw.data());
-    const auto mw = link_motions<spatial_algebra, DW, true>(scene, qw.data());
-    gather_external<spatial_algebra>(scene, DW::variable(t, 2 * N), xw, mw, mw, n_w, f_w);
     for (int n = 0; n < NN; ++n) W_own[n] = {G::zero_ang(), G::lin::Zero()};
-    for (int L = 1; L < NL; ++L)
-      if (loads.torque[L]) {
-        W_own[last[L]] =
-            world_wrench<G>(R[L], r[L], lane(n_w[L], -1), loads.force[L] ? lane(f_w[L], -1) : Vec3d::Zero());
-      }
+    if constexpr (local) {
+      dL.setZero();
+      auto element = [&]<int C>(std::integral_constant<int, C>) {
+        using Comp = typename S::template component_type<C>;
+        if constexpr (Comp::kind == role::force) {
+          if constexpr (force_acts<S, C>()) {
+            using EL = element_links<S, C>;
+            constexpr int m = EL::count, lanes = 12 * m + 1, nf = int(Comp::frames.size());
+            constexpr auto links = EL::frame_links;
+            using D = dual<double, lanes>;
+            std::array<link_pose<D, velocity_in::link>, m> lp;
+            for (int b = 0; b < m; ++b) {
+              const int L = EL::link[b];
+              lp[b] = local_lanes<D>(R[L], r[L], r1, vel[last[L]], 12 * b);
+            }
+            std::array<frame_kinematics<D>, nf> fk;
+            static_for<nf>([&](auto k) {
+              constexpr int K = decltype(k)::value;
+              fk[K] = frame_from_link<S, C, K>(scene, lp[EL::block_of(links[K])]);
+            });
+            // (It reads no state; the state is there for its signature.)
+            std::array<D, S::n_q> ql;
+            std::array<D, N> vl;
+            for (int i = 0; i < S::n_q; ++i) ql[i] = D(q[i]);
+            for (int i = 0; i < N; ++i) vl[i] = D(v[i]);
+            std::array<wrench<D>, nf> on;
+            scene.template component<C>().wrenches(D::variable(t, lanes - 1), state_view(scene, ql.data(), vl.data()),
+                                                   fk.data(), on.data());
+            for (int k = 0; k < nf; ++k) {
+              const int l = links[k];
+              if (l == 0) continue;
+              // What it exerts at frame k, as a wrench at the fixed point.
+              Vec3<D> f = Vec3<D>::Zero(), n = Vec3<D>::Zero();
+              if constexpr (Comp::exerts_force) {
+                f = on[k].f;
+                n = (fk[k].r - r1.template cast<D>()).cross(f);
+              }
+              if constexpr (Comp::exerts_torque) n += on[k].n;
+              const int nl = last[l];
+              W_own[nl] += spatial<G>{lane(n, -1), lane(f, -1)};
+              auto project = [&](int c, const spatial<G>& dW) {
+                for (int i = nl; i != 0; i = parent[i]) dL(i - 1, c) += s[i].dot(dW);
+              };
+              project(2 * N, {lane(n, lanes - 1), lane(f, lanes - 1)});
+              for (int b = 0; b < m; ++b) {
+                const int P = EL::link[b], np = last[P];
+                std::array<spatial<G>, 12> g;  // ∂W in P's 12 directions
+                for (int c = 0; c < 12; ++c) g[c] = {lane(n, 12 * b + c), lane(f, 12 * b + c)};
+                for (int j = np; j != 0; j = parent[j]) {
+                  const spatial<G> tw = motion_cross(s[j], vel[np]) - u[j];
+                  spatial<G> dq{G::zero_ang(), G::lin::Zero()}, dv = dq;
+                  for (int c = 0; c < 3; ++c) {
+                    dq += g[c] * s[j].a[c] + g[3 + c] * s[j].l[c] + g[6 + c] * tw.a[c] + g[9 + c] * tw.l[c];
+                    dv += g[6 + c] * s[j].a[c] + g[9 + c] * s[j].l[c];
+                  }
+                  project(rate[j], dq);
+                  project(N + rate[j], dv);
+                }
+              }
+            }
+          }
+        }
+      };
+      [&]<int... C>(std::integer_sequence<int, C...>) {
+        (element(std::integral_constant<int, C>{}), ...);
+      }(std::make_integer_sequence<int, S::n_components>{});
+    } else {
+      const auto xw = state_view(scene, qw.data(), vw.data());
+      const auto mw = link_motions<spatial_algebra, DW, true>(scene, qw.data());
+      gather_external<spatial_algebra>(scene, DW::variable(t, 2 * N), xw, mw, mw, n_w, f_w);
+      for (int L = 1; L < NL; ++L)
+        if (loads.torque[L]) {
+          W_own[last[L]] =
+              world_wrench<G>(R[L], r[L], lane(n_w[L], -1), loads.force[L] ? lane(f_w[L], -1) : Vec3d::Zero());
+        }
+    }
     W = W_own;
     for (int n = NN - 1; n >= 1; --n) {
       b[n - 1] += s[n].dot(W[n]);
@@ -761,7 +926,8 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   }
   for (int k = 0; k < reading::count; ++k)
     for (int c = 0; c <= 2 * N; ++c) out(last[reading::link[k]] - 1, c) += dQ_read[k].d[c];
-  if constexpr (loaded) {
+  if constexpr (local) out += dL;
+  if constexpr (loaded && !local) {
     // ∂W_L/∂x: the loads' own derivatives turned into the world, and for q_j
     // of L's ancestors (and L) the turn of W_L itself, s_j ×* W_L; each
     // projected on the columns of L and its ancestors.

@@ -49,6 +49,15 @@ constexpr bool force_acts() {
   if constexpr (l.size() == 1) return l[0] != 0;
   else return l[0] != l[1];
 }
+/// Whether force element type C's loads read the joint state (an input of
+/// (t, x)) besides its frames' motions and the time: its optional member
+/// reads_state, else assumed so.
+template <class C>
+constexpr bool element_reads_state() {
+  if constexpr (requires { C::reads_state; }) return C::reads_state;
+  else return true;
+}
+
 /// Whether any force element needs the frames' positions and velocities.
 template <class S>
 constexpr bool has_motion_forces() {

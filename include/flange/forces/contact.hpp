@@ -125,6 +125,8 @@ class Contact {
   static constexpr bool pairs_two_bodies = true;
   /// A force at each contact point: a force and a torque about each frame's origin.
   static constexpr bool exerts_force = true, exerts_torque = true;
+  /// Its loads read its frames' motions alone, not the joint state.
+  static constexpr bool reads_state = false;
 
   struct params {
     ShapeA a{};                           ///< the shape at frame_a

@@ -66,6 +66,8 @@ class LineForce {
   static constexpr bool line_of_action = true;
   /// What it exerts: a force along its line, no torque.
   static constexpr bool exerts_force = true, exerts_torque = false;
+  /// Its force reads its frames' motions alone, not the joint state.
+  static constexpr bool reads_state = false;
   static constexpr bool has_spring = !std::is_same_v<Law, line_law::damper>;
   static constexpr bool has_damper = !std::is_same_v<Law, line_law::spring>;
 

@@ -35,6 +35,8 @@ class Torque {
   static constexpr bool needs_motion = false;  // a pure torque: the link rotations suffice
   static constexpr bool line_of_action = false;
   static constexpr bool exerts_force = false, exerts_torque = true;
+  /// Whether its torque reads the joint state (an input of (t, x)).
+  static constexpr bool reads_state = input_reads_state<In>;
 
   struct params {
     input_slot<In, diagnostic::torque_input_type_not_given> M_ext;

@@ -51,6 +51,8 @@ class WorldLoad {
   static constexpr bool needs_motion = true;  // the frame's orientation and offset
   static constexpr bool line_of_action = false;
   static constexpr bool exerts_force = is_force, exerts_torque = !is_force;
+  /// Whether its value reads the joint state (an input of (t, x)).
+  static constexpr bool reads_state = input_reads_state<In>;
 
   struct params {
     input_slot<In, diagnostic::world_load_input_type_not_given> value;  ///< f_ext [N] or τ_ext [N m]
