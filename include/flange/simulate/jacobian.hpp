@@ -71,9 +71,9 @@ jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen
 namespace detail {
 /// Whether jacobian() takes the analytic derivatives: wherever they apply,
 /// but for a scene of one link with force elements, whose loads' dual
-/// numbers (in every direction) and passes cost more than dual numbers
+/// numbers and passes cost more than dual numbers
 /// through its derivative: the paper's arm 157 against 86 ns, a ball on the
-/// ground 3.8 against 3.5 µs (build/benchmarks/jacobian's analytic_ns and
+/// ground 5.8 against 3.5 µs (build/benchmarks/jacobian's analytic_ns and
 /// dual_ns; docs/performance.md, "The Jacobian").
 template <class S>
 constexpr bool jacobian_takes_analytic() {
