@@ -105,10 +105,9 @@ energy_terms<T> energy_of(const S& scene, const T& t, const JS& js, const T* q, 
     }
     if constexpr (requires { c.potential_energy(t, js, frames); })
       e.elastic_potential += c.potential_energy(t, js, frames + fb);
-    if constexpr (carries_body<C>) {
-      if constexpr (std::is_same_v<T, double>) add_body_energy<T>(c.m(), c.r_cm(), c.J(), frames[fb], g, e);
-      else add_body_energy<T>(T(c.m()), c.r_cm().template cast<T>(), c.J().template cast<T>(), frames[fb], g, e);
-    }
+    // (cast<double>() of a double vector is the vector itself, no copy)
+    if constexpr (carries_body<C>)
+      add_body_energy<T>(T(c.m()), c.r_cm().template cast<T>(), c.J().template cast<T>(), frames[fb], g, e);
   });
   return e;
 }

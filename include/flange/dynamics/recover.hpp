@@ -92,6 +92,13 @@ inline constexpr auto cut_steps = [] {
   return out;
 }();
 
+/// Frame b's pose relative to frame a (core/joint.hpp's pose) from the two
+/// frames' world poses.
+template <class T>
+pose<T> pose_between(const frame_kinematics<T>& a, const frame_kinematics<T>& b) {
+  return {b.R * a.R.transpose(), a.R * (b.r - a.r)};
+}
+
 /// The cut forces of every tree edge's frames, from the flows already in cut
 /// (bodies, force elements, cut joints; zero elsewhere) by the steps. An
 /// edge's relative pose comes from its frames' poses; body holds, at frame_a
@@ -113,7 +120,7 @@ void sweep_cut_forces(const cut_step* steps, int n_steps, const int* set_of, int
     const bool child_is_b = st.child > st.parent;
     const frame_kinematics<T>& fa = frames[child_is_b ? st.parent : st.child];
     const frame_kinematics<T>& fb = frames[child_is_b ? st.child : st.parent];
-    const pose<T> x{fb.R * fa.R.transpose(), fa.R * (fb.r - fa.r)};
+    const pose<T> x = pose_between(fa, fb);
     const wrench<T>& B = body[child_is_b ? st.parent : st.child];
     if (child_is_b) {
       const wrench<T> a = flows_a_from_b(x, cut[st.child]);
@@ -377,8 +384,7 @@ template <class S, class T = double, class State>
       // A cut joint: its coordinates from its frames, as it would have them.
       const auto& a = sol.frames[tab.frame_base[I]];
       const auto& b = sol.frames[tab.frame_base[I] + 1];
-      const Mat3<T> R = b.R * a.R.transpose();
-      const Vec3<T> p = a.R * (b.r - a.r);
+      const auto [R, p] = detail::pose_between(a, b);
       const Vec3<T> w = a.R * (b.R.transpose() * b.w) - a.w;
       const Vec3<T> pd = a.R * (b.v - a.v) - a.w.cross(p);
       std::array<T, C::nq> q;
