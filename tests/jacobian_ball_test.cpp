@@ -4,10 +4,12 @@
 // (jacobian_agree.hpp), on a free body, a ball under and over other joints,
 // floating quadrupeds with drives that read the state and with feet pressing
 // into the ground (contact loads in every direction, the base's quaternion
-// among them); and that a ball connected the other way round takes dual
+// among them), a ball pressing into the ground (its link on the World's);
+// and that a ball connected the other way round takes dual
 // numbers.
 #include <catch2/catch.hpp>
 
+#include <flange/models/ball.hpp>
 #include <flange/models/legged.hpp>
 #include <flange/simulate/jacobian.hpp>
 
@@ -89,5 +91,36 @@ TEST_CASE("floating quadrupeds: drives that read the state, feet on the ground")
     INFO("the trunk's vertical acceleration " << f[S::n_q + 1] << " on the ground, " << f_off[S::n_q + 1] << " off it");
     CHECK(std::abs(f[S::n_q + 1] - f_off[S::n_q + 1]) > 10);
     agree_at(feet, x, 0.0, k, false);
+  }
+}
+
+TEST_CASE("a ball rolling and slipping 1 mm into the ground: the contact's loads in its link's lanes") {
+  // The FreeMotion's link hangs from the World, where the half-space's loads
+  // read the link's pose a scalar at a time (dynamics/external.hpp). Turned,
+  // spinning, sliding: friction and the normal force both change with every
+  // coordinate and rate. Not against central differences (friction peaks at
+  // a slip of 1 mm/s, as for the quadruped's feet).
+  const auto ball = models::ball_on_ground();
+  using S = std::remove_cvref_t<decltype(ball)>;
+  std::mt19937 rng(3307);
+  for (int k = 0; k < 3; ++k) {
+    std::array<double, S::n_state> x{};
+    x[1] = 0.099 + test::uniform(rng, -0.0005, 0.0005);  // a radius of 0.1: 0.5–1.5 mm into the ground
+    x[0] = test::uniform(rng, -1, 1), x[2] = test::uniform(rng, -1, 1);
+    const Vec3d axis = Vec3d(test::uniform(rng, -1, 1), test::uniform(rng, -1, 1), test::uniform(rng, -1, 1)).normalized();
+    const double a = test::uniform(rng, 0, 3);
+    x[6] = std::cos(a / 2);  // the quaternion: (x, y, z, w)
+    for (int i = 0; i < 3; ++i) x[3 + i] = std::sin(a / 2) * axis[i];
+    for (int i = S::n_q; i < S::n_state; ++i) x[i] = test::uniform(rng, -2, 2);
+    x[S::n_q + 1] = test::uniform(rng, -0.01, 0.01);  // pressing, not bouncing
+    // The same state off the ground: the contact changes the vertical
+    // acceleration by about g.
+    std::array<double, S::n_state> f, f_off, xs = x;
+    ball(xs, f, 0.0);
+    xs[1] += 0.01;
+    ball(xs, f_off, 0.0);
+    INFO("the ball's vertical acceleration " << f[S::n_q + 1] << " on the ground, " << f_off[S::n_q + 1] << " off it");
+    CHECK(f[S::n_q + 1] - f_off[S::n_q + 1] > 2);
+    agree_at(ball, x, 0.0, k, false);
   }
 }

@@ -747,29 +747,10 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
               const int L = EL::link[b];
               lp[b] = local_lanes<D>(R[L], r[L], r1, vel[last[L]], 12 * b);
             }
-            std::array<frame_kinematics<D>, nf> fk;
-            static_for<nf>([&](auto k) {
-              constexpr int K = decltype(k)::value;
-              fk[K] = frame_from_link<S, C, K>(scene, lp[EL::block_of(links[K])]);
-            });
-            // (It reads no state; the state is there for its signature.)
-            std::array<D, S::n_q> ql;
-            std::array<D, N> vl;
-            for (int i = 0; i < S::n_q; ++i) ql[i] = D(q[i]);
-            for (int i = 0; i < N; ++i) vl[i] = D(v[i]);
-            std::array<wrench<D>, nf> on;
-            scene.template component<C>().wrenches(D::variable(t, lanes - 1), state_view(scene, ql.data(), vl.data()),
-                                                   fk.data(), on.data());
-            for (int k = 0; k < nf; ++k) {
-              const int l = links[k];
-              if (l == 0) continue;
-              // What it exerts at frame k, as a wrench at the fixed point.
-              Vec3<D> f = Vec3<D>::Zero(), n = Vec3<D>::Zero();
-              if constexpr (Comp::exerts_force) {
-                f = on[k].f;
-                n = (fk[k].r - r1.template cast<D>()).cross(f);
-              }
-              if constexpr (Comp::exerts_torque) n += on[k].n;
+            // Adds f and n (a wrench at the fixed point, world coordinates)
+            // on link l: its value to l's own, its derivatives carried to
+            // the state's directions.
+            auto add = [&](int l, const Vec3<D>& f, const Vec3<D>& n) {
               const int nl = last[l];
               W_own[nl] += spatial<G>{lane(n, -1), lane(f, -1)};
               auto project = [&](int c, const spatial<G>& dW) {
@@ -790,6 +771,43 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
                   project(rate[j], dq);
                   project(N + rate[j], dv);
                 }
+              }
+            };
+            if constexpr (meets_resting_half_space<S, C>()) {
+              // A contact with a half-space at rest in the World: the code
+              // the derivative runs for it (resting_half_space_loads, its
+              // loads in link coordinates about the link's origin) in its
+              // link's 12 lanes, turned into the world at the fixed point.
+              const link_pose<D, velocity_in::link>& P = lp[0];
+              Vec3<D> fL = Vec3<D>::Zero(), nL = Vec3<D>::Zero();
+              resting_half_space_loads<S, C>(scene, P, fL, nL);
+              const Vec3<D> f = P.R.transpose() * fL;
+              add(EL::link[0], f, P.R.transpose() * nL + (P.r - r1.template cast<D>()).cross(f));
+            } else {
+              std::array<frame_kinematics<D>, nf> fk;
+              static_for<nf>([&](auto k) {
+                constexpr int K = decltype(k)::value;
+                fk[K] = frame_from_link<S, C, K>(scene, lp[EL::block_of(links[K])]);
+              });
+              // (It reads no state; the state is there for its signature.)
+              std::array<D, S::n_q> ql;
+              std::array<D, N> vl;
+              for (int i = 0; i < S::n_q; ++i) ql[i] = D(q[i]);
+              for (int i = 0; i < N; ++i) vl[i] = D(v[i]);
+              std::array<wrench<D>, nf> on;
+              scene.template component<C>().wrenches(D::variable(t, lanes - 1),
+                                                     state_view(scene, ql.data(), vl.data()), fk.data(), on.data());
+              for (int k = 0; k < nf; ++k) {
+                const int l = links[k];
+                if (l == 0) continue;
+                // What it exerts at frame k, as a wrench at the fixed point.
+                Vec3<D> f = Vec3<D>::Zero(), n = Vec3<D>::Zero();
+                if constexpr (Comp::exerts_force) {
+                  f = on[k].f;
+                  n = (fk[k].r - r1.template cast<D>()).cross(f);
+                }
+                if constexpr (Comp::exerts_torque) n += on[k].n;
+                add(l, f, n);
               }
             }
           }
