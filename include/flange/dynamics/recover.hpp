@@ -384,7 +384,10 @@ template <class S, class T = double, class State>
       // A cut joint: its coordinates from its frames, as it would have them.
       const auto& a = sol.frames[tab.frame_base[I]];
       const auto& b = sol.frames[tab.frame_base[I] + 1];
-      const auto [R, p] = detail::pose_between(a, b);
+      // (Not a structured binding: clang 14 refuses one in the requires-expression below.)
+      const pose<T> ab = detail::pose_between(a, b);
+      const Mat3<T>& R = ab.R;
+      const Vec3<T>& p = ab.p;
       const Vec3<T> w = a.R * (b.R.transpose() * b.w) - a.w;
       const Vec3<T> pd = a.R * (b.v - a.v) - a.w.cross(p);
       std::array<T, C::nq> q;
