@@ -34,8 +34,9 @@ cxx=${SAN_CXX:-clang++-14}
 # tree_joints_test, joints_physics_test, joints_equivalence_test,
 # force_elements_test), its loops are a four-bar and a slider-crank through
 # the derivative, the projection, simulate and recover (loops_test; loops
-# also run here in simulate_test and jacobian_test, a ball cut joint among
-# them); names_test's lookups run in every program's recover. no_heap_test is
+# also run here in simulate_test, a four-bar, and jacobian_test, a row of
+# loop windows; loops_test's spatial loops and ball cut joints run under no
+# sanitizer); names_test's lookups run in every program's recover. no_heap_test is
 # not among them: what it runs of flange (the derivative, simulate, the
 # residual, the Jacobian, ensembles) the programs above run too, and what it
 # adds, Odeint's other steppers driving a scene through the same system, is
