@@ -99,6 +99,14 @@ FLANGE_INLINE Vec2d cross(const Vec2d& r, double w) { return {w * r[1], -w * r[0
 FLANGE_INLINE double cross(const Vec2d& x, const Vec2d& y) { return x[0] * y[1] - x[1] * y[0]; }
 FLANGE_INLINE double inner(double x, double y) { return x * y; }
 FLANGE_INLINE double inner(const Vec3d& x, const Vec3d& y) { return x.dot(y); }
+/// x + y and x − y, a component at a time: Eigen's constructor from a sum of
+/// two small vectors is a call under GCC in functions as large as the passes.
+FLANGE_INLINE Vec3d plus(const Vec3d& x, const Vec3d& y) { return {x[0] + y[0], x[1] + y[1], x[2] + y[2]}; }
+FLANGE_INLINE Vec2d plus(const Vec2d& x, const Vec2d& y) { return {x[0] + y[0], x[1] + y[1]}; }
+FLANGE_INLINE double plus(double x, double y) { return x + y; }
+FLANGE_INLINE Vec3d minus(const Vec3d& x, const Vec3d& y) { return {x[0] - y[0], x[1] - y[1], x[2] - y[2]}; }
+FLANGE_INLINE Vec2d minus(const Vec2d& x, const Vec2d& y) { return {x[0] - y[0], x[1] - y[1]}; }
+FLANGE_INLINE double minus(double x, double y) { return x - y; }
 /// R·a for an angular quantity: about K in the plane, which R leaves alone.
 FLANGE_INLINE Vec3d turn(const Mat3d& R, const Vec3d& a) { return R * a; }
 FLANGE_INLINE double turn(const Mat2d&, double a) { return a; }
@@ -113,8 +121,8 @@ template <class G>
 struct spatial {
   typename G::ang a;
   typename G::lin l;
-  FLANGE_INLINE friend spatial operator+(const spatial& x, const spatial& y) { return {x.a + y.a, x.l + y.l}; }
-  FLANGE_INLINE friend spatial operator-(const spatial& x, const spatial& y) { return {x.a - y.a, x.l - y.l}; }
+  FLANGE_INLINE friend spatial operator+(const spatial& x, const spatial& y) { return {plus(x.a, y.a), plus(x.l, y.l)}; }
+  FLANGE_INLINE friend spatial operator-(const spatial& x, const spatial& y) { return {minus(x.a, y.a), minus(x.l, y.l)}; }
   FLANGE_INLINE friend spatial operator*(const spatial& x, double c) { return {x.a * c, x.l * c}; }
   FLANGE_INLINE spatial& operator+=(const spatial& y) {
     a += y.a;
@@ -127,12 +135,12 @@ struct spatial {
 /// The motion cross product v × w.
 template <class G>
 FLANGE_INLINE spatial<G> motion_cross(const spatial<G>& v, const spatial<G>& w) {
-  return {cross(v.a, w.a), cross(v.a, w.l) + cross(v.l, w.a)};
+  return {cross(v.a, w.a), plus(cross(v.a, w.l), cross(v.l, w.a))};
 }
 /// The force cross product v ×* f.
 template <class G>
 FLANGE_INLINE spatial<G> force_cross(const spatial<G>& v, const spatial<G>& f) {
-  return {cross(v.a, f.a) + cross(v.l, f.l), cross(v.a, f.l)};
+  return {plus(cross(v.a, f.a), cross(v.l, f.l)), cross(v.a, f.l)};
 }
 
 /// A rigid body's spatial inertia at the passes' fixed point: mass, first moment
@@ -174,7 +182,7 @@ struct velocity_coupling {
   FLANGE_INLINE spatial<G> operator*(const spatial<G>& w) const { return {T * w.a, cross(k, w.a)}; }
   /// The angular part of Bᵀ·s (its linear part is zero).
   FLANGE_INLINE typename G::ang transposed_times(const spatial<G>& s) const {
-    return transpose_times(T, s.a) + cross(s.l, k);
+    return plus(transpose_times(T, s.a), cross(s.l, k));
   }
 };
 
