@@ -114,7 +114,8 @@ template <class A, class S, class T, class M>
 /// caller: a call would pass every link's motion through memory.
 template <class A, class S, class T, class M, class PM>
 [[gnu::always_inline]] inline void solve_accelerations(const S& scene, const T& t, const T* q, const T* v, T* vdot,
-                                                      const M& motions, const PM& pose, T* lambda = nullptr) {
+                                                      const M& motions, const PM& pose, T* lambda = nullptr,
+                                                      bool* exact = nullptr) {
   constexpr int N = S::n_v;
   const auto x = state_view(scene, q, v);
   link_loads<S, T> n_ext, f_ext;
@@ -176,7 +177,7 @@ template <class A, class S, class T, class M, class PM>
       ldlt_pivots<N, T> f;
       if (const auto pivot = ldlt_factor<N>(Mm, f, scale.data(), mass_factor<S>{}); pivot.index >= 0) [[unlikely]]
         singular_mass_matrix<S>(pivot, t, q, v);
-      constrained_accelerations(scene, pose, Mm, f, v, r.data(), vdot, lambda);
+      constrained_accelerations(scene, pose, Mm, f, v, r.data(), vdot, lambda, exact);
     } else {
       if (const auto pivot = solve_spd<N>(Mm, r.data(), vdot, scale.data(), mass_factor<S>{}); pivot.index >= 0)
           [[unlikely]]
@@ -205,12 +206,15 @@ void accelerations_in(const S& scene, const T& t, const T* q, const T* v, T* vdo
 }
 
 /// v̇ at (t, q, v) and the loops' constraint forces λ (dynamics/loop_solve.hpp),
-/// for a scene with loops.
+/// for a scene with loops; with exact given, whether the loop solve was the
+/// exact one there (constrained_accelerations).
 template <class S, class T>
-void accelerations_and_constraint_forces(const S& scene, const T& t, const T* q, const T* v, T* vdot, T* lambda) {
+void accelerations_and_constraint_forces(const S& scene, const T& t, const T* q, const T* v, T* vdot, T* lambda,
+                                         bool* exact = nullptr) {
   using A = algebra_t<S>;
   const auto motions = detail::algebra_motions<A>(scene, q);
-  detail::solve_accelerations<A>(scene, t, q, v, vdot, motions, detail::pose_motions<A>(scene, q, motions), lambda);
+  detail::solve_accelerations<A>(scene, t, q, v, vdot, motions, detail::pose_motions<A>(scene, q, motions), lambda,
+                                 exact);
 }
 
 /// v̇ at (t, q, v) by Newton–Euler, the mass matrix and LDLᵀ, in the

@@ -196,7 +196,7 @@ void sparse_constrained_accelerations(const MM& Mf, F factor, const std::array<T
                                       const std::array<std::array<T, n>, m>& B,
                                       const std::array<rows_mask<n>, m>& support, const std::array<T, m>& gamma,
                                       const std::array<T, m>& norm2, const std::array<T, m>& own, T largest,
-                                      T repeats, T* vdot, T* lambda) {
+                                      T repeats, T* vdot, T* lambda, bool* exact) {
   using std::sqrt;
   // B's rows: for each rate, the constraints whose columns can be nonzero in it.
   std::array<rows_mask<m>, n> touches{};
@@ -222,6 +222,11 @@ void sparse_constrained_accelerations(const MM& Mf, F factor, const std::array<T
     inv[j] = rjj * den;
     const T e = mu2 * den;
     if (e > e_max) e_max = e;
+  }
+  if (exact) {
+    bool all = true;
+    for (int j = 0; j < m; ++j) all = all && R.has(j);
+    *exact = all && e_max <= T(constraint_sweep_skip);
   }
   if (e_max <= T(constraint_sweep_skip)) {
     R.solve_transposed(gamma.data(), u.data());
@@ -291,10 +296,14 @@ void sparse_constrained_accelerations(const MM& Mf, F factor, const std::array<T
 /// one before.
 ///
 /// With lambda given, also the constraint forces λ (row by row: Gᵀ·λ is
-/// their generalized force), from R₁₁·(Pᵀ·λ) = Qᵀ·(z − Wᵀ·y).
+/// their generalized force), from R₁₁·(Pᵀ·λ) = Qᵀ·(z − Wᵀ·y). With exact
+/// given, whether the solve was the exact one: every row kept (none
+/// repeats the others) and no division damped, so that v̇ and λ solve
+/// M·v̇ + b = τ + Gᵀ·λ, G·v̇ = −Ġ·v to round-off (what the Jacobian's
+/// implicit differentiation needs, simulate/jacobian.hpp).
 template <class S, class T, class MM, class Motions>
 void constrained_accelerations(const S& scene, const Motions& motions, const MM& Mf, const ldlt_pivots<S::n_v, T>& f,
-                               const T* v, const T* rhs, T* vdot, T* lambda = nullptr) {
+                               const T* v, const T* rhs, T* vdot, T* lambda = nullptr, bool* exact = nullptr) {
   using std::sqrt;
   constexpr int n = S::n_v, m = n_constraints<S>();
   const auto k = loop_kinematics_at<S>(scene, motions, v);
@@ -386,7 +395,7 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
   repeats = repeats * repeats;
   if constexpr (sparse) {
     sparse_constrained_accelerations<n, m>(Mf, mass_factor<S>{}, wt, t, B, support, gamma, norm2, own, largest, repeats,
-                                           vdot, lambda);
+                                           vdot, lambda, exact);
   } else {
   // Q's columns overwrite B's, in pivot order: a pivot swaps its row of B
   // (and everything kept per row) into place, p[j] remembering the row's
@@ -441,6 +450,7 @@ void constrained_accelerations(const S& scene, const Motions& motions, const MM&
     const T e = mu2 * den;
     if (e > e_max) e_max = e;
   }
+  if (exact) *exact = rank == m && e_max <= T(constraint_sweep_skip);
   if (e_max <= T(constraint_sweep_skip)) {
     // Away from singular positions the sweeps converge to R₁₁ᵀ·u = (Pᵀ·γ)₁
     // within round-off (e_max⁴ ≤ 1e-16): solve it once, undamped.
