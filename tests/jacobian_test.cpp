@@ -148,6 +148,69 @@ TEST_CASE("the dual-number Jacobian matches finite differences") {
   }
 }
 
+namespace {
+/// jacobian() of a scene with loops, where its loop solve is exact, against
+/// jacobian_dual(), which carries the dual numbers through the mass matrix,
+/// its factor and the loop solve: the same derivative by another algorithm,
+/// to round-off (the solves' few ε of the entries: 1e-12 of the largest).
+template <class S, std::size_t N>
+void check_implicit(const S& scene, double t, const std::array<double, N>& x) {
+  jacobian_matrix<S> J;
+  Eigen::Matrix<double, N, 1> ft, ft_d;
+  REQUIRE(detail::jacobian_loops(scene, t, x, J, &ft));  // the implicit path, not dual numbers
+  const auto Jd = jacobian_dual(scene, t, x, &ft_d);
+  const double scale = std::max(1.0, Jd.cwiseAbs().maxCoeff());
+  CHECK((J - Jd).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+  CHECK((ft - ft_d).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+  CHECK((jacobian(scene, t, x) - J).cwiseAbs().maxCoeff() == 0.0);  // jacobian() takes it
+}
+}  // namespace
+
+TEST_CASE("with loops, the Jacobian by implicit differentiation equals dual numbers") {
+  std::mt19937 rng(5);
+  SECTION("four-bar and slider-crank, on their loops and off them") {
+    const models::fourbar_params p{};
+    const auto fb = models::fourbar(p);
+    const auto sc = models::slider_crank(models::slider_crank_params{});
+    for (int k = 0; k < 6; ++k) {
+      const double th = test::uniform(rng, 0, 6.28);
+      const auto q = models::fourbar_coordinates(p, th, models::freudenstein_rocker(p, th));
+      std::array<double, 6> x{q[0], q[1], q[2], test::uniform(rng, -3, 3), test::uniform(rng, -3, 3),
+                              test::uniform(rng, -3, 3)};
+      close_loops<"crank_pivot">(fb, x);
+      check_implicit(fb, 0.3, x);
+      for (int i = 0; i < 3; ++i) x[i] += test::uniform(rng, -1e-3, 1e-3);  // off the loop
+      check_implicit(fb, 0.3, x);
+      std::array<double, 6> y{th, test::uniform(rng, -1, 1), test::uniform(rng, 0.3, 0.4), test::uniform(rng, -3, 3),
+                              test::uniform(rng, -3, 3), test::uniform(rng, -3, 3)};
+      close_loops<"crank_pivot">(sc, y);
+      check_implicit(sc, 1.1, y);
+    }
+  }
+  SECTION("a row of loop windows in space repeats its constraints: dual numbers") {
+    // Run-time axes make every window's cut a spatial revolute (5 rows), of
+    // which the row's plane repeats 3: the loop solve leaves rows out, and
+    // jacobian() takes dual numbers, rows left out included.
+    const auto row = models::window_row<2, models::window_row_params, axis::any>(models::window_row_params{});
+    using S = decltype(row);
+    S::state_type x{};
+    for (int i = 0; i <= 2; ++i) {
+      const int k = S::q_offset("post_pivot" + std::to_string(i));
+      x[k] = 1.2;
+      x[S::n_q + k] = 0.7;
+    }
+    for (int i = 0; i < 2; ++i) {
+      const int k = S::q_offset("top_pin" + std::to_string(i));
+      x[k] = -1.2;
+      x[S::n_q + k] = -0.7;
+    }
+    close_loops<"post_pivot0">(row, x);
+    jacobian_matrix<S> J;
+    CHECK_FALSE(detail::jacobian_loops(row, 0.0, x, J, nullptr));
+    CHECK((jacobian(row, 0.0, x) - jacobian_dual(row, 0.0, x)).cwiseAbs().maxCoeff() == 0.0);
+  }
+}
+
 TEST_CASE("a dual number is exactly zero only with its derivatives") {
   // The loop solve skips products with exact zeros (loop_solve.hpp); a
   // coefficient whose value vanishes at this state but not its derivative

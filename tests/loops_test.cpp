@@ -297,6 +297,26 @@ TEST_CASE("states and lengths that cannot close a loop are refused, naming the l
                     Catch::Contains("the loop closed by Revolute \"rocker_pivot\" cannot close near the given state"));
 }
 
+TEST_CASE("the spatial RSUR loop's Jacobian: dual numbers, where its loop solve is damped") {
+  // jacobian() differentiates a loop implicitly only where its loop solve is
+  // the exact one (simulate/jacobian.hpp). The RSUR loop's five cut rows
+  // overlap enough that the solve damps them (the largest share the damping
+  // leaves out is about 1.2e-3 here, above constraint_sweep_skip's 1e-4, and
+  // four sweeps refine it): jacobian() then takes dual numbers through that
+  // very solve, so it is jacobian_dual() to the bit.
+  using S = invariant_scenes::Rsur;
+  auto closed = invariant_scenes::rsur_closed();
+  const auto& sp = closed.scene;
+  std::mt19937 rng(9);
+  for (int k = 0; k < 3; ++k) {
+    auto x = closed.x;
+    for (int i = S::n_q; i < S::n_state; ++i) x[i] = std::uniform_real_distribution<double>(-2, 2)(rng);
+    jacobian_matrix<S> J;
+    CHECK_FALSE(detail::jacobian_loops(sp, 0.4, x, J, nullptr));
+    CHECK((jacobian(sp, 0.4, x) - jacobian_dual(sp, 0.4, x)).cwiseAbs().maxCoeff() == 0.0);
+  }
+}
+
 TEST_CASE("the loop laws hold at random closed states of the four-bar, slider-crank, parallelogram and RSUR loop") {
   // Accelerations against the dense [M Gᵀ; G 0] solve, G·v̇ = −Ġ·v, the
   // power balance and the recovered residual (loop_laws.hpp); measured at

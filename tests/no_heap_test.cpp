@@ -94,7 +94,7 @@ TEST_CASE("the derivative allocates nothing: chains, a branched tree, line force
         }) == 0);
 }
 
-TEST_CASE("a loop scene's derivative and its projected stepping allocate nothing") {
+TEST_CASE("a loop scene's derivative, its Jacobian and its projected stepping allocate nothing") {
   const auto fb = models::fourbar({});
   using X = decltype(fb)::state_type;
   X x{0.3, 1.3, 2.4, 5.0, 0, 0}, dx;
@@ -105,7 +105,12 @@ TEST_CASE("a loop scene's derivative and its projected stepping allocate nothing
           for (int i = 0; i < 100; ++i) fb(x, dx, 0.0);
           integrate_projected(dopri, fb, x, 0.01, 0.5, 1e-3);
           normalize(fb, x);
+          // by implicit differentiation (its LU on the stack), then dual numbers
+          volatile double sink = jacobian(fb, 0.0, x).sum() + jacobian_dual(fb, 0.0, x).sum();
+          (void)sink;
         }) == 0);
+  jacobian_matrix<std::remove_cvref_t<decltype(fb)>> J;
+  CHECK(detail::jacobian_loops(fb, 0.0, x, J, nullptr));
 }
 
 TEST_CASE("a ball bouncing on the ground (a Contact) allocates nothing, in its derivative, its Jacobian and through simulate") {

@@ -2,10 +2,12 @@
 // derivative, jacobian() and, in the full build, jacobian_dual() timed in
 // turns in one process, medians of 15 rounds, one line per scene:
 //
-//   jacobian <scene> N=<n> derivative_ns=<x> jacobian_ns=<y> ratio=<y/x> [dual_ns=<z>] [analytic_ns=<w>] path=<analytic|dual>
+//   jacobian <scene> N=<n> derivative_ns=<x> jacobian_ns=<y> ratio=<y/x> [dual_ns=<z>] [analytic_ns=<w>] path=<analytic|implicit|dual>
 //
 // analytic_ns: for a scene the analytic derivatives cover but jacobian()
 // takes dual numbers for (one link with force elements), their time.
+// implicit: a scene with loops, differentiated through its constrained
+// system where the loop solve is exact at x (detail::jacobian_loops).
 #pragma once
 #include <algorithm>
 #include <cstdio>
@@ -25,7 +27,12 @@ inline int failures = 0;
 template <bool WithDual, class S, class State>
 void measure(const char* name, int n, const S& s, State x) {
   constexpr bool analytic = flange::detail::jacobian_takes_analytic<S>();
-  if constexpr (WithDual && analytic) {
+  bool implicit = false;
+  if constexpr (flange::detail::has_loops<S>) {
+    flange::jacobian_matrix<S> J;
+    implicit = flange::detail::jacobian_loops(s, 0.0, x, J, nullptr);
+  }
+  if constexpr (WithDual && (analytic || flange::detail::has_loops<S>)) {
     const auto J = flange::jacobian(s, 0.0, x), Jd = flange::jacobian_dual(s, 0.0, x);
     if ((J - Jd).cwiseAbs().maxCoeff() > 1e-12 * std::max(1.0, Jd.cwiseAbs().maxCoeff())) {
       std::printf("jacobian %s N=%d differs from the dual-number Jacobian\n", name, n);
@@ -69,7 +76,7 @@ void measure(const char* name, int n, const S& s, State x) {
     if (other) ta.push_back(rounds::block_ns(passes, na));
   }
   const double d = rounds::median(td), j = rounds::median(tj);
-  const char* path = analytic ? "analytic" : "dual";
+  const char* path = analytic ? "analytic" : implicit ? "implicit" : "dual";
   if (other)
     std::printf("jacobian %s N=%d derivative_ns=%.1f jacobian_ns=%.1f ratio=%.2f dual_ns=%.1f analytic_ns=%.1f path=%s\n",
                 name, n, d, j, j / d, rounds::median(tu), rounds::median(ta), path);

@@ -154,15 +154,138 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
   }
   return J;
 }
+
+/// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given, for a scene with loops,
+/// by implicit differentiation of its constrained accelerations: v̇ and the
+/// constraint forces λ solve
+///
+///   F = M·v̇ + b − τ − Gᵀ·λ = 0,   C = G·v̇ + Ġ·v = 0,
+///
+/// so that [M −Gᵀ; G 0]·[∂v̇; ∂λ] = −[∂F; ∂C], where ∂F and ∂C are the
+/// derivatives at the solution's v̇ and λ held fixed: inverse dynamics, the
+/// joints' forces and the loops' kinematics in dual numbers (no mass matrix,
+/// no factorization, no loop solve in them), then one double solve with
+/// n_state + 1 right-hand sides. Only where the loop solve was the exact one
+/// (every constraint row kept, no division damped: dynamics/loop_solve.hpp);
+/// false otherwise, and nothing written (a redundant constraint or a
+/// singular position, which jacobian() then differentiates by dual numbers,
+/// the damping and the rows left out included).
+template <class S, class State>
+bool jacobian_loops(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
+                    Eigen::Matrix<double, S::n_state, 1>* dfdt) {
+  static_assert(has_loops<S>);
+  S::require_state_size(x);
+  using A = algebra_t<S>;
+  constexpr int nq = S::n_q, nv = S::n_v, m = n_constraints<S>(), n = S::n_state, nk = nv + m;
+  std::array<double, n> xs;
+  for (int i = 0; i < n; ++i) xs[i] = x[i];
+  const double* q = xs.data();
+  const double* v = xs.data() + nq;
+  std::array<double, nv> a;
+  std::array<double, m> lambda;
+  bool exact = false;
+  accelerations_and_constraint_forces(scene, t, q, v, a.data(), lambda.data(), &exact);
+  if (!exact) return false;
+  Eigen::Matrix<double, nk, nk> K;
+  {
+    const auto motions = algebra_motions<A>(scene, q);
+    decltype(auto) pose = pose_motions<A>(scene, q, motions);
+    Eigen::Matrix<double, nv, nv> M;
+    std::array<double, nv> scale;
+    mass_matrix<A>(scene, motions, M, scale.data());
+    const auto k = loop_kinematics_at<S>(scene, pose, v);
+    K.template topLeftCorner<nv, nv>() = M;
+    K.template topRightCorner<nv, m>() = -k.G.transpose();
+    K.template bottomLeftCorner<m, nv>() = k.G;
+    K.template bottomRightCorner<m, m>().setZero();
+  }
+  // K's LU with partial pivoting, applied below to a block of right-hand
+  // sides a column at a time by plain loops (Eigen's solve of a few columns
+  // goes through its general triangular kernels: twice the cost of
+  // everything else here).
+  const Eigen::PartialPivLU<Eigen::Matrix<double, nk, nk>> lu(K);
+  const auto& LU = lu.matrixLU();
+  const auto& perm = lu.permutationP().indices();
+  // The residuals' derivatives in passes of at most jacobian_max_directions
+  // lanes, as jacobian_dual's: directions 0 … n − 1 the state, n the time.
+  constexpr int directions = n + 1, W = jacobian_width(directions);
+  using D = dual<double, W>;
+  std::array<D, n> xd;
+  std::array<D, nv> ad;
+  for (int i = 0; i < nv; ++i) ad[i] = D(a[i]);
+  Eigen::Matrix<double, nk, W> rhs;
+  for (int first = 0; first < directions; first += W) {
+    auto seed = [&](double value, int direction) {
+      return direction >= first && direction < first + W ? D::variable(value, direction - first) : D(value);
+    };
+    for (int i = 0; i < n; ++i) xd[i] = seed(xs[i], i);
+    const D td = seed(t, n);
+    const D* qd = xd.data();
+    const D* vd = xd.data() + nq;
+    const auto xv = state_view(scene, qd, vd);
+    const auto motions = algebra_motions<A>(scene, qd);
+    decltype(auto) pose = pose_motions<A>(scene, qd, motions);
+    link_loads<S, D> n_ext, f_ext;
+    gather_external<A>(scene, td, xv, motions, pose, n_ext, f_ext);
+    std::array<D, nv> F;
+    inverse_dynamics<A>(scene, motions, vd, ad.data(), n_ext, f_ext, F.data());
+    if constexpr (has_joint_forces<S>()) {
+      std::array<D, nv> tau;
+      joint_forces(scene, td, xv, tau.data());
+      for (int i = 0; i < nv; ++i) F[i] -= tau[i];
+    }
+    const auto k = loop_kinematics_at<S>(scene, pose, vd);
+    for (int c = 0; c < m; ++c) {
+      D C = k.bias[c];
+      for (int i = 0; i < nv; ++i) {
+        F[i] -= k.G(c, i) * lambda[c];
+        C += k.G(c, i) * a[i];
+      }
+      for (int l = 0; l < W; ++l) rhs(nv + c, l) = -C.d[l];
+    }
+    for (int i = 0; i < nv; ++i)
+      for (int l = 0; l < W; ++l) rhs(i, l) = -F[i].d[l];
+    Eigen::Matrix<double, nk, W> d;
+    for (int r = 0; r < nk; ++r) d.row(perm[r]) = rhs.row(r);
+    for (int r = 1; r < nk; ++r)
+      for (int c = 0; c < r; ++c) d.row(r) -= LU(r, c) * d.row(c);
+    for (int r = nk - 1; r >= 0; --r) {
+      for (int c = r + 1; c < nk; ++c) d.row(r) -= LU(r, c) * d.row(c);
+      d.row(r) /= LU(r, r);
+    }
+    // q̇'s rows: the joints' rates, differentiated as they are written.
+    std::array<D, nq> qdot;
+    joint_rates(scene, qd, vd, qdot.data());
+    for (int l = 0; l < W && first + l < directions; ++l) {
+      const int c = first + l;
+      if (c < n) {
+        for (int i = 0; i < nq; ++i) J(i, c) = qdot[i].d[l];
+        for (int i = 0; i < nv; ++i) J(nq + i, c) = d(i, l);
+      } else if (dfdt) {
+        for (int i = 0; i < nq; ++i) (*dfdt)(i) = qdot[i].d[l];
+        for (int i = 0; i < nv; ++i) (*dfdt)(nq + i) = d(i, l);
+      }
+    }
+  }
+  return true;
+}
 }  // namespace detail
 
 /// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given: analytic where
-/// dynamics/derivatives.hpp covers the scene (jacobian_takes_analytic), else
-/// by dual numbers.
+/// dynamics/derivatives.hpp covers the scene (jacobian_takes_analytic); for a
+/// scene with loops by implicit differentiation where the loop solve is exact
+/// (detail::jacobian_loops); else by dual numbers.
 template <class S, class State>
 jacobian_matrix<S> jacobian(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
-  if constexpr (detail::jacobian_takes_analytic<S>()) return detail::jacobian_analytic(scene, t, x, dfdt);
-  else return jacobian_dual(scene, t, x, dfdt);
+  if constexpr (detail::jacobian_takes_analytic<S>()) {
+    return detail::jacobian_analytic(scene, t, x, dfdt);
+  } else if constexpr (detail::has_loops<S>) {
+    jacobian_matrix<S> J;
+    if (detail::jacobian_loops(scene, t, x, J, dfdt)) return J;
+    return jacobian_dual(scene, t, x, dfdt);
+  } else {
+    return jacobian_dual(scene, t, x, dfdt);
+  }
 }
 
 /// ∂f/∂x (and ∂f/∂t into *dfdt) by central differences, step
