@@ -1,9 +1,11 @@
 // The exact Jacobian ∂f/∂x of a scene's derivative (used by rosenbrock4.hpp
 // and linearize.hpp): for a tree of one-axis joints and balls (a Spherical,
 // a floating base's FreeMotion), from the analytic derivatives of inverse
-// dynamics (dynamics/derivatives.hpp); for
-// every other scene by forward-mode dual numbers through the
-// scalar-templated dynamics (jacobian_dual, which is also there for any scene).
+// dynamics (dynamics/derivatives.hpp); for a scene with loops whose loop
+// solve is exact at x, by implicit differentiation of its constrained system
+// (jacobian_loops, below); for every other scene by forward-mode dual
+// numbers through the scalar-templated dynamics (jacobian_dual, which is
+// also there for any scene).
 //
 // jacobian_finite_difference is the usual stand-in, central differences, for
 // comparison: 2·(n + 1) derivative evaluations and about 1e-10 relative
