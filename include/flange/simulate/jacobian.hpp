@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "flange/dynamics/derivatives.hpp"
 #include "flange/math/quaternion.hpp"
@@ -43,30 +44,49 @@ namespace detail {
 /// Passes and directions per pass for n directions.
 constexpr int jacobian_passes(int n) { return (n + jacobian_max_directions - 1) / jacobian_max_directions; }
 constexpr int jacobian_width(int n) { return (n + jacobian_passes(n) - 1) / jacobian_passes(n); }
+
+/// The passes of dual numbers that differentiate in the n states and the
+/// time (directions 0 … n − 1 the state, n the time), jacobian_width of them
+/// a pass: body(xd, td, first) for each, where direction first + l is lane l
+/// of xd and td and the others are constants. Its results' lane l goes to
+/// column first + l, or to ∂/∂t when that is n (lane_columns).
+template <int n, class State, class Body>
+void dual_passes(const State& x, double t, Body&& body) {
+  constexpr int W = jacobian_width(n + 1);
+  using D = dual<double, W>;
+  std::array<D, n> xd;
+  for (int first = 0; first <= n; first += W) {
+    auto seed = [&](double value, int direction) {
+      return direction >= first && direction < first + W ? D::variable(value, direction - first) : D(value);
+    };
+    for (int i = 0; i < n; ++i) xd[i] = seed(x[i], i);
+    body(std::as_const(xd), seed(t, n), first);
+  }
+}
+/// For each lane l of the pass from `first` that is a direction, f(l, c)
+/// with c its column (n: the time).
+template <int n, class F>
+void lane_columns(int first, F&& f) {
+  constexpr int W = jacobian_width(n + 1);
+  for (int l = 0; l < W && first + l <= n; ++l) f(l, first + l);
+}
 }  // namespace detail
 
 /// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given, by dual numbers.
 template <class S, class State>
 jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
   S::require_state_size(x);
-  constexpr int n = S::n_state, directions = n + 1;  // the n states, then t
-  constexpr int K = detail::jacobian_width(directions);
-  using D = dual<double, K>;
-  std::array<D, n> xd, fd;
+  constexpr int n = S::n_state;
+  std::array<dual<double, detail::jacobian_width(n + 1)>, n> fd;
   jacobian_matrix<S> J;
-  for (int first = 0; first < directions; first += K) {
-    // Direction first + k is lane k of this pass; the others are constants.
-    auto seed = [&](double value, int direction) {
-      return direction >= first && direction < first + K ? D::variable(value, direction - first) : D(value);
-    };
-    for (int i = 0; i < n; ++i) xd[i] = seed(x[i], i);
-    scene(xd, fd, seed(t, n));
-    for (int i = 0; i < n; ++i)
-      for (int k = 0; k < K && first + k < directions; ++k) {
-        if (first + k < n) J(i, first + k) = fd[i].d[k];
-        else if (dfdt) (*dfdt)(i) = fd[i].d[k];
-      }
-  }
+  detail::dual_passes<n>(x, t, [&](const auto& xd, const auto& td, int first) {
+    scene(xd, fd, td);
+    detail::lane_columns<n>(first, [&](int l, int c) {
+      for (int i = 0; i < n; ++i)
+        if (c < n) J(i, c) = fd[i].d[l];
+        else if (dfdt) (*dfdt)(i) = fd[i].d[l];
+    });
+  });
   return J;
 }
 
@@ -188,40 +208,25 @@ bool jacobian_loops(const S& scene, double t, const State& x, jacobian_matrix<S>
   bool exact = false;
   accelerations_and_constraint_forces(scene, t, q, v, a.data(), lambda.data(), &exact);
   if (!exact) return false;
+  // K = [M −Gᵀ; G 0]: M here, G from the first pass's values below.
   Eigen::Matrix<double, nk, nk> K;
   {
-    const auto motions = algebra_motions<A>(scene, q);
-    decltype(auto) pose = pose_motions<A>(scene, q, motions);
     Eigen::Matrix<double, nv, nv> M;
     std::array<double, nv> scale;
-    mass_matrix<A>(scene, motions, M, scale.data());
-    const auto k = loop_kinematics_at<S>(scene, pose, v);
+    mass_matrix<A>(scene, algebra_motions<A>(scene, q), M, scale.data());
     K.template topLeftCorner<nv, nv>() = M;
-    K.template topRightCorner<nv, m>() = -k.G.transpose();
-    K.template bottomLeftCorner<m, nv>() = k.G;
     K.template bottomRightCorner<m, m>().setZero();
   }
-  // K's LU with partial pivoting, applied below to a block of right-hand
-  // sides a column at a time by plain loops (Eigen's solve of a few columns
-  // goes through its general triangular kernels: twice the cost of
-  // everything else here).
-  const Eigen::PartialPivLU<Eigen::Matrix<double, nk, nk>> lu(K);
-  const auto& LU = lu.matrixLU();
-  const auto& perm = lu.permutationP().indices();
-  // The residuals' derivatives in passes of at most jacobian_max_directions
-  // lanes, as jacobian_dual's: directions 0 … n − 1 the state, n the time.
-  constexpr int directions = n + 1, W = jacobian_width(directions);
+  // K's LU with partial pivoting, applied to each pass's right-hand sides a
+  // column at a time by plain loops (Eigen's solve of a few columns goes
+  // through its general triangular kernels: twice the cost of everything
+  // else here).
+  Eigen::PartialPivLU<Eigen::Matrix<double, nk, nk>> lu;
+  constexpr int W = jacobian_width(n + 1);
   using D = dual<double, W>;
-  std::array<D, n> xd;
   std::array<D, nv> ad;
   for (int i = 0; i < nv; ++i) ad[i] = D(a[i]);
-  Eigen::Matrix<double, nk, W> rhs;
-  for (int first = 0; first < directions; first += W) {
-    auto seed = [&](double value, int direction) {
-      return direction >= first && direction < first + W ? D::variable(value, direction - first) : D(value);
-    };
-    for (int i = 0; i < n; ++i) xd[i] = seed(xs[i], i);
-    const D td = seed(t, n);
+  dual_passes<n>(xs, t, [&](const auto& xd, const D& td, int first) {
     const D* qd = xd.data();
     const D* vd = xd.data() + nq;
     const auto xv = state_view(scene, qd, vd);
@@ -237,6 +242,15 @@ bool jacobian_loops(const S& scene, double t, const State& x, jacobian_matrix<S>
       for (int i = 0; i < nv; ++i) F[i] -= tau[i];
     }
     const auto k = loop_kinematics_at<S>(scene, pose, vd);
+    if (first == 0) {
+      for (int c = 0; c < m; ++c)
+        for (int i = 0; i < nv; ++i) {
+          K(nv + c, i) = k.G(c, i).v;
+          K(i, nv + c) = -k.G(c, i).v;
+        }
+      lu.compute(K);
+    }
+    Eigen::Matrix<double, nk, W> rhs;
     for (int c = 0; c < m; ++c) {
       D C = k.bias[c];
       for (int i = 0; i < nv; ++i) {
@@ -247,6 +261,8 @@ bool jacobian_loops(const S& scene, double t, const State& x, jacobian_matrix<S>
     }
     for (int i = 0; i < nv; ++i)
       for (int l = 0; l < W; ++l) rhs(i, l) = -F[i].d[l];
+    const auto& LU = lu.matrixLU();
+    const auto& perm = lu.permutationP().indices();
     Eigen::Matrix<double, nk, W> d;
     for (int r = 0; r < nk; ++r) d.row(perm[r]) = rhs.row(r);
     for (int r = 1; r < nk; ++r)
@@ -258,8 +274,7 @@ bool jacobian_loops(const S& scene, double t, const State& x, jacobian_matrix<S>
     // q̇'s rows: the joints' rates, differentiated as they are written.
     std::array<D, nq> qdot;
     joint_rates(scene, qd, vd, qdot.data());
-    for (int l = 0; l < W && first + l < directions; ++l) {
-      const int c = first + l;
+    lane_columns<n>(first, [&](int l, int c) {
       if (c < n) {
         for (int i = 0; i < nq; ++i) J(i, c) = qdot[i].d[l];
         for (int i = 0; i < nv; ++i) J(nq + i, c) = d(i, l);
@@ -267,8 +282,8 @@ bool jacobian_loops(const S& scene, double t, const State& x, jacobian_matrix<S>
         for (int i = 0; i < nq; ++i) (*dfdt)(i) = qdot[i].d[l];
         for (int i = 0; i < nv; ++i) (*dfdt)(nq + i) = d(i, l);
       }
-    }
-  }
+    });
+  });
   return true;
 }
 }  // namespace detail
