@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Sanitizers and fuzzing, as CI runs them (docs/fuzzing.md):
-#   1. AddressSanitizer + UndefinedBehaviorSanitizer (clang 14, -O1, line
-#      tables, every check on but null, pointer-overflow, object-size,
+#   1. AddressSanitizer + UndefinedBehaviorSanitizer (clang 14, -O0 (one
+#      program -O1, below), line tables, every check on but null, pointer-overflow, object-size,
 #      alignment and vptr (below), none
 #      recovered from) over the unit-test programs listed below,
 #      which between them include every public header and run every algorithm;
@@ -52,15 +52,20 @@ elapsed() { echo $(( $(date +%s) - $1 ))s; }
 # the Debug build type): a report's stack still names every file, line and
 # function, and loops_test compiles in 100 s instead of 120. Inlining is
 # left to the compiler (FLANGE_NO_FORCED_INLINE, detail/inline.hpp), as in
-# the unit tests: the same code paths, a quarter less compiler time. Not
-# -O0: clang compiles a program in about half the time (joints_physics_test
-# under ASan + UBSan: 38 → 21 s), but the checks that ran in seconds then run
-# for minutes (loops_test over 200 s).
-configure() {  # dir, flags, extra cmake args…
-  local dir=$1 flags=$2
-  shift 2
+# the unit tests: the same code paths, a quarter less compiler time. The
+# ASan and TSan programs build at -O0, where clang takes about half the time
+# (jacobian_test under ASan + UBSan: 117 → 56 s of compiler) and the
+# sanitizers check every access the source makes; their checks then run in
+# seconds (jacobian_test 0.3 → 2.2 s, TSan's program 3 s), except
+# ensemble_test's (76 s against 1 s), which builds at -O1
+# (FLANGE_TEST_OPTIMIZE, tests/CMakeLists.txt). The fuzz targets build at
+# -O1: they run for a fixed time, and an unoptimised target tries a fraction
+# of the inputs.
+configure() {  # dir, optimisation, flags, extra cmake args…
+  local dir=$1 opt=$2 flags=$3
+  shift 3
   cmake -S "$root" -B "$dir" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG= \
-        -DCMAKE_CXX_FLAGS="-O1 -gline-tables-only -fno-omit-frame-pointer -DFLANGE_NO_FORCED_INLINE $flags" \
+        -DCMAKE_CXX_FLAGS="$opt -gline-tables-only -fno-omit-frame-pointer -DFLANGE_NO_FORCED_INLINE $flags" \
         -DCMAKE_EXE_LINKER_FLAGS="$flags" -DFLANGE_BUILD_EXAMPLES=OFF -DFLANGE_BUILD_BENCHMARKS=OFF "$@" >/dev/null
 }
 
@@ -89,7 +94,7 @@ configure_asan() {
   # so that two compile at a time: `--target a b …` builds them one by one.
   local selection
   selection=$(IFS=';'; echo "${asan_tests[*]}")
-  configure "$dir" "$asan_flags" -DFLANGE_TEST_SELECTION="$selection"
+  configure "$dir" -O0 "$asan_flags" -DFLANGE_TEST_SELECTION="$selection" -DFLANGE_TEST_OPTIMIZE=ensemble_test
   local known t
   known=$(cmake --build "$dir" --target help)
   for t in "${asan_tests[@]}"; do
@@ -131,7 +136,7 @@ run_asan() { run_asan_build; run_asan_tests; }
 # ThreadSanitizer's program is one translation unit; in a whole run it builds
 # with the others (build_all) and runs beside the ASan programs
 # (run_checks_in_pairs).
-configure_tsan() { configure "$out/tsan" "-fsanitize=thread"; }
+configure_tsan() { configure "$out/tsan" -O0 "-fsanitize=thread"; }
 
 build_tsan() {
   local dir=$out/tsan
@@ -155,7 +160,7 @@ run_tsan() {
   test_tsan "$t0" || exit 1
 }
 
-configure_fuzz() { configure "$out/fuzz" "" -DFLANGE_BUILD_TESTS=OFF -DFLANGE_BUILD_FUZZERS=ON; }
+configure_fuzz() { configure "$out/fuzz" -O1 "" -DFLANGE_BUILD_TESTS=OFF -DFLANGE_BUILD_FUZZERS=ON; }
 
 run_fuzz() {
   local t0; t0=$(date +%s)
