@@ -3,9 +3,10 @@
 // one-axis joints) with Revolute and Prismatic joints, axis laws, offsets,
 // every body kind and every force element of models/tree.hpp: against the
 // dual-number Jacobian of the same scene and central differences
-// (jacobian_agree.hpp). The kinds the passes do not take (Universal,
-// Cylindrical, Planar) are drawn as balls here, and a ball faces the World
-// with its frame_a; tests/jacobian_ball_test.cpp has the hand-built scenes.
+// (jacobian_agree.hpp). The joints of rates in series (Universal,
+// Cylindrical, Planar) are drawn as balls here (jacobian_series_test.cpp
+// keeps them), and a ball faces the World with its frame_a;
+// tests/jacobian_ball_test.cpp has the hand-built scenes.
 #include <catch2/catch.hpp>
 
 #include <flange/models/tree.hpp>

@@ -1,9 +1,14 @@
 // The Jacobian benchmark's named scenes (jacobian.hpp): the paper's robot arm
-// (its motor a Torque element) and gantry crane, a four-bar (a loop: dual
-// numbers), the tutorial's spatial arm (a PD law on each joint) and, where
+// (its motor a Torque element) and gantry crane, a four-bar (a loop), the tutorial's spatial arm (a PD law on each joint) and, where
 // flange-urdf is built, the same arm read from its URDF file; a free body,
-// and the ball of models/ball.hpp on the ground (one link with a contact:
-// dual numbers).
+// the ball of models/ball.hpp on the ground (one link with a contact:
+// dual numbers), and a chain of joints of several rates in series (a
+// Universal, a Cylindrical, a Planar, a Universal: nine rates).
+#include <cmath>
+
+#include <flange/joints/cylindrical.hpp>
+#include <flange/joints/planar.hpp>
+#include <flange/joints/universal.hpp>
 #include <flange/models/ball.hpp>
 #include <flange/models/linkages.hpp>
 #include <flange/models/paper.hpp>
@@ -34,6 +39,26 @@ void jacobian_bench::named_scenes() {
     measure<true>("free_body", 1, body, x);
     // Rolling and slipping 1 mm into the ground.
     measure<true>("ball_contact", 1, models::ball_on_ground(), x);
+  }
+  {
+    const Vec3d J(0.02, 0.03, 0.025), c(0.1, -0.2, 0.05);
+    const auto series =
+        scene(World<"world">{}, Universal<"u", axis::x, axis::any>({.n_b = Vec3d(0.2, 1, -0.3).normalized()}),
+              Body<"b1", cm::offset>({.m = 1.3, .J = (1.3 * J).asDiagonal(), .r_cm = c}),
+              FixedTranslation<"r1">({.d = {0.1, -0.4, 0.05}}),
+              Cylindrical<"c">({.n = Vec3d(0.3, -0.2, 1).normalized()}),
+              Body<"b2", cm::offset>({.m = 0.7, .J = (0.7 * J).asDiagonal(), .r_cm = c}),
+              Planar<"p">({.n = Vec3d(0, 0.2, 1).normalized(), .n_x = Vec3d(1, 0.1, 0)}),
+              Body<"b3", cm::offset>({.m = 0.4, .J = (0.4 * J).asDiagonal(), .r_cm = c}),
+              Universal<"u2", axis::z, axis::y>{}, Body<"b4", cm::offset>({.m = 0.3, .J = (0.3 * J).asDiagonal(), .r_cm = c}),
+              connect<"world.frame_b", "u.frame_a">, connect<"u.frame_b", "r1.frame_a">,
+              connect<"u.frame_b", "b1.frame_a">, connect<"r1.frame_b", "c.frame_a">,
+              connect<"c.frame_b", "b2.frame_a">, connect<"c.frame_b", "p.frame_a">,
+              connect<"p.frame_b", "b3.frame_a">, connect<"p.frame_b", "u2.frame_a">,
+              connect<"u2.frame_b", "b4.frame_a">);
+    auto xs = neutral_state(series);
+    for (int i = 0; i < int(xs.size()); ++i) xs[i] = 0.3 * std::sin(1.7 * i + 0.2);
+    measure<true>("series_joints", 4, series, xs);
   }
   const auto arm = spatial_arm::make_scene();
   measure<true>("spatial_arm", 3, arm, initial_state<"elbow">(arm, {.q = 0.6, .v = 0.4}));

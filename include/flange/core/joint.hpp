@@ -59,6 +59,16 @@
 //                                translations along the parent's axes, q = v
 //                                (a Spherical, a FreeMotion): the analytic
 //                                Jacobian takes it (dynamics/derivatives.hpp)
+//   sequential_rates             true when, connected frame_a toward the
+//                                World, it moves as one-rate joints in series
+//                                in the order of its rates, q = v: rate k's
+//                                column is fixed in the frame that the rates
+//                                before it have moved (as a joint's axis in a
+//                                massless link between them), so that a change
+//                                of q_k moves the joint's frame_b by that
+//                                column (a Universal, a Cylindrical, a
+//                                Planar): the analytic Jacobian takes it as a
+//                                row of one-rate joints (dynamics/derivatives.hpp)
 //   as_cut, cut_state(R, p, w, ṗ, q, v)  what it leaves free when it closes a
 //                                loop (cut_freedom below; without it, it
 //                                cannot be cut), and its coordinates and rates

@@ -1,4 +1,5 @@
-// ∂v̇/∂q, ∂v̇/∂v and ∂v̇/∂t of a tree of one-axis joints and balls, exactly, from the
+// ∂v̇/∂q, ∂v̇/∂v and ∂v̇/∂t of a tree of one-axis joints, balls and joints of
+// rates in series, exactly, from the
 // derivatives of inverse dynamics (Carpentier and Mansard, "Analytical
 // derivatives of rigid body dynamics algorithms", RSS 2018):
 //
@@ -59,12 +60,19 @@
 // axes (Q moving by ½·Q ⊗ (δ, 0)); simulate/jacobian.hpp maps them to the
 // quaternion's four coordinates (R is homogeneous in Q).
 //
-// Which scenes take it (analytic_derivatives<S>): a tree (no loop, nothing
-// floating) of joints of one rate whose column is fixed in their link
-// (Revolute, Prismatic, either way round, axes typed or given at run time,
-// any drive) and of balls connected frame_a toward the World, with any force
-// elements. simulate/jacobian.hpp takes dual numbers for every other scene
-// (Universal, Cylindrical, Planar joints, a reversed ball, loops).
+// A joint of several rates that moves as one-rate joints in series
+// (core/joint.hpp, sequential_rates: a Universal, a Cylindrical, a Planar) is
+// as many nodes in a row, each of them a one-axis joint's node: rate k's
+// column is fixed in the frame the rates before it have moved (a massless
+// link between them), and q_k's direction is that column.
+//
+// Which scenes take it (analytic_derivatives<S>): a tree (no loop) of joints
+// of one rate whose column is fixed in their link (Revolute, Prismatic,
+// either way round, axes typed or given at run time, any drive), of balls
+// and of joints of rates in series, both connected frame_a toward the World,
+// with any force elements. simulate/jacobian.hpp takes dual numbers for
+// every other scene (a ball or a Universal or Cylindrical connected the other
+// way round, loops).
 #pragma once
 #include <array>
 #include <cmath>
@@ -289,6 +297,21 @@ constexpr bool ball_joint() {
   }
 }
 
+/// Whether joint type J, connected Dir, is one the analytic derivatives
+/// handle as one-rate nodes in a row (core/joint.hpp, sequential_rates: a
+/// Universal, a Cylindrical, a Planar), connected frame_a toward the World:
+/// each rate's column is fixed in the frame the rates before it have moved,
+/// as a one-axis joint's in a massless link between them. It transmits
+/// nothing of its own.
+template <class J, int Dir>
+constexpr bool sequential_joint() {
+  if constexpr (requires { requires J::sequential_rates; }) {
+    return Dir > 0 && J::nq == J::nv && !has_generalized_force<J>;
+  } else {
+    return false;
+  }
+}
+
 /// Whether some force element acts on a link (not only on the World).
 template <class S>
 constexpr bool has_link_loads() {
@@ -314,7 +337,9 @@ constexpr bool analytic_derivatives() {
     return false;
   } else {
     return []<int... L>(std::integer_sequence<int, L...>) {
-      return ((one_axis_joint<typename link_info<S, L + 1>::joint_type>() || ball_links<S>[L + 1]) && ...);
+      return ((one_axis_joint<typename link_info<S, L + 1>::joint_type>() || ball_links<S>[L + 1] ||
+               sequential_joint<typename link_info<S, L + 1>::joint_type, link_info<S, L + 1>::dir>()) &&
+              ...);
     }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
   }
 }
@@ -542,6 +567,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
       if (ball_links<S>[L]) return true;
     return false;
   }();
+  constexpr bool one_node_links = N == NL - 1;  // every link a node (no ball, no rates in series)
 
   // Each link's motion at q, densified: E (parent → link), p (its origin in
   // the parent's coordinates); each node's column (link coordinates).
@@ -595,7 +621,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
     vel[n] = vel[P] + s[n] * qd;
     u[n] = motion_cross(s[n], vel[V]);
     acc[n] = acc[P] - u[n] * qd;  // v_L × s_L = v_V × s_L
-    if (!balls || n == last[L]) {
+    if (one_node_links || n == last[L]) {
       Ic[n] = G::to_world(scene.model().link[L], R[L], r[L]);
       const spatial<G> h = Ic[n] * vel[n];
       F[n] = Ic[n] * acc[n] + force_cross(vel[n], h);
@@ -685,7 +711,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
           for (int k = 0; k < 4; ++k) qw[LI::q + qa + k].d[LI::v + qa + c] = dQc[k];
         }
       } else {
-        qw[LI::q] = DW::variable(q[LI::q], LI::v);
+        for (int k = 0; k < LI::joint_type::nq; ++k) qw[LI::q + k] = DW::variable(q[LI::q + k], LI::v + k);
       }
     });
     for (int k = 0; k < N; ++k) vw[k] = DW::variable(v[k], N + k);

@@ -75,6 +75,8 @@ class Cylindrical {
   // ---------------------------------------------------------- motion
   static constexpr int nq = 2, nv = 2;
   static constexpr bool reversible = true;
+  /// Along n, then about it (core/joint.hpp).
+  static constexpr bool sequential_rates = true;
   /// It turns about its axis but also slides along it: never planar.
   static constexpr int planar_normal() { return Axis::fixed ? Axis::index : -1; }
   static constexpr bool moves_in_plane(int) { return false; }

@@ -99,6 +99,8 @@ class Planar {
   // ---------------------------------------------------------- motion
   static constexpr int nq = 3, nv = 3;
   static constexpr bool reversible = false;
+  /// Along e_x, along e_y, then about n (core/joint.hpp).
+  static constexpr bool sequential_rates = true;
   static constexpr int planar_normal() { return Normal::fixed ? Normal::index : -1; }
   static constexpr bool moves_in_plane(int k) { return Normal::fixed && First::fixed && Normal::index == k; }
   /// Closing a loop, it leaves the rotation about n and the translations

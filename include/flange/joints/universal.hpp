@@ -115,6 +115,8 @@ class Universal {
   static constexpr int nq = 2, nv = 2;
   static constexpr std::array<bool, 2> angles{true, true};  ///< φ₁ and φ₂ (core/joint.hpp)
   static constexpr bool reversible = true;
+  /// About n_a, then about n_b (core/joint.hpp).
+  static constexpr bool sequential_rates = true;
   static constexpr int planar_normal() { return -1; }
   static constexpr bool moves_in_plane(int) { return false; }
   /// Closing a loop, it leaves the turns about n_a (in frame_a) and n_b (in

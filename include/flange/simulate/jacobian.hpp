@@ -1,6 +1,7 @@
 // The exact Jacobian ∂f/∂x of a scene's derivative (used by rosenbrock4.hpp
-// and linearize.hpp): for a tree of one-axis joints and balls (a Spherical,
-// a floating base's FreeMotion), from the analytic derivatives of inverse
+// and linearize.hpp): for a tree of one-axis joints, balls (a Spherical,
+// a floating base's FreeMotion) and joints of rates in series (a Universal,
+// a Cylindrical, a Planar), from the analytic derivatives of inverse
 // dynamics (dynamics/derivatives.hpp); for a scene with loops whose loop
 // solve is exact at x, by implicit differentiation of its constrained system
 // (jacobian_loops, below); for every other scene by forward-mode dual
@@ -129,7 +130,8 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
   constexpr auto row = detail::derivative_row_rate<S>;
   for (int r = 0; r < nv; ++r) J.row(nq + row[r]).template tail<nv>() = d.row(r).template segment<nv>(nv);
   // ∂/∂q and q̇'s rows, joint by joint: q̇ = v, and ∂v̇/∂q the rate's column,
-  // for a coordinate of one rate (a ball's translations too); for a ball's
+  // for a coordinate of one rate (a ball's translations and a joint's rates
+  // in series too); for a ball's
   // quaternion Q = (x, y, z, w), q̇ = ½·Q ⊗ (ω, 0) (linear in Q and in ω),
   // and ∂v̇/∂Q through the turn δ (link coordinates) that a change of Q
   // makes, δ = 2·vec(Q* ⊗ dQ)/|Q|² (R is homogeneous in Q: a change along Q
@@ -166,8 +168,11 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
       for (int r = 0; r < nv; ++r)
         J.row(nq + row[r]).template segment<4>(qQ) = d.row(r).template segment<3>(vw) * T;
     } else {
-      J(LI::q, nq + LI::v) = 1;
-      for (int r = 0; r < nv; ++r) J(nq + row[r], LI::q) = d(r, LI::v);
+      // One rate, or rates in series (q = v): each coordinate its rate's.
+      for (int k = 0; k < LI::joint_type::nv; ++k) {
+        J(LI::q + k, nq + LI::v + k) = 1;
+        for (int r = 0; r < nv; ++r) J(nq + row[r], LI::q + k) = d(r, LI::v + k);
+      }
     }
   });
   if (dfdt) {
