@@ -7,7 +7,7 @@
 #      which between them include every public header and run every algorithm;
 #   2. ThreadSanitizer over tests/thread_safety_test.cpp (a scene and an
 #      ensemble study shared by four threads);
-#   3. the libFuzzer targets (fuzz/), each for FUZZ_SECONDS (40 by default)
+#   3. the libFuzzer targets (fuzz/), each for FUZZ_SECONDS (20 by default)
 #      from the committed seed corpus, built with ASan + UBSan too.
 # Any finding fails the script. Needs tools/install-deps.sh --sanitizers.
 #
@@ -17,7 +17,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${SAN_DIR:-$root/build-san}
-fuzz_seconds=${FUZZ_SECONDS:-40}
+fuzz_seconds=${FUZZ_SECONDS:-20}
 jobs=${JOBS:-2}
 parts=${1:-all}
 cxx=${SAN_CXX:-clang++-14}
