@@ -22,6 +22,14 @@ namespace jacobian_bench {
 /// Scenes whose jacobian() and jacobian_dual() differ beyond round-off.
 inline int failures = 0;
 
+/// The -DFLANGE_SCALE_FULL=ON build: it also times jacobian_dual() where its
+/// units cost minutes to compile.
+#ifdef FLANGE_SCALE_FULL
+inline constexpr bool full = true;
+#else
+inline constexpr bool full = false;
+#endif
+
 /// Times scene S at state x; WithDual adds jacobian_dual()'s figure (and
 /// first checks that jacobian() equals it to 1e-12 of the largest entry).
 template <bool WithDual, class S, class State>

@@ -14,12 +14,6 @@
 #include "jacobian.hpp"
 
 namespace {
-#ifdef FLANGE_SCALE_FULL
-constexpr bool full = true;
-#else
-constexpr bool full = false;
-#endif
-
 template <int Legs, int Links, bool WithDual = false>
 void legged(const char* name) {
   using namespace flange;
