@@ -1,5 +1,7 @@
 // The analytic Jacobian's agreement check, shared by the tests that hold
-// scenes to it (jacobian_analytic_test.cpp, jacobian_ball_test.cpp).
+// scenes to it (jacobian_analytic_test.cpp, jacobian_ball_test.cpp,
+// jacobian_ball_trees_test.cpp, jacobian_series_test.cpp), and their trees'
+// shapes without force elements.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -8,11 +10,23 @@
 
 #include <catch2/catch.hpp>
 
+#include <flange/models/tree.hpp>
 #include <flange/simulate/jacobian.hpp>
 
 #include "tree_laws.hpp"
 
 namespace flange::test {
+
+/// The shape t without its force elements (no Torque, line force or load on
+/// any joint): the trees whose Jacobian is the passes' alone.
+constexpr models::tree_shape without_force_elements(models::tree_shape t) {
+  for (int i = 0; i < t.n; ++i) {
+    t.torque[i] = false;
+    t.line[i] = -2;
+    t.load[i] = 0;
+  }
+  return t;
+}
 
 /// Both Jacobians (the analytic one whether or not jacobian() takes it for
 /// this scene) and ∂f/∂t at state x (number k, for the report). The two

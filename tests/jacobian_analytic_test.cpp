@@ -30,13 +30,7 @@ auto pd_of(double kp, double kd) {
 /// kind) without force elements.
 template <unsigned Seed, int N, bool Planar>
 constexpr models::tree_shape one_axis_tree() {
-  auto t = models::random_tree_shape(Seed, N, Planar);
-  for (int i = 0; i < t.n; ++i) {
-    t.torque[i] = false;
-    t.line[i] = -2;
-    t.load[i] = 0;
-  }
-  return t;
+  return test::without_force_elements(models::random_tree_shape(Seed, N, Planar));
 }
 }  // namespace
 

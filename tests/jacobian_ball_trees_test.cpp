@@ -29,13 +29,8 @@ constexpr models::tree_shape ball_tree() {
     if (k == joint_kind::universal || k == joint_kind::cylindrical || k == joint_kind::planar)
       t.kind[i] = joint_kind::spherical;
     if (t.kind[i] == joint_kind::spherical || t.kind[i] == joint_kind::free_motion) t.reversed[i] = false;
-    if (!Loads) {
-      t.torque[i] = false;
-      t.line[i] = -2;
-      t.load[i] = 0;
-    }
   }
-  return t;
+  return Loads ? t : test::without_force_elements(t);
 }
 
 /// How many joints of the shape are balls.

@@ -27,15 +27,9 @@ namespace {
 template <unsigned Seed, int N, bool Loads>
 constexpr models::tree_shape series_tree() {
   auto t = models::random_tree_shape(Seed, N, false, true);
-  for (int i = 0; i < t.n; ++i) {
+  for (int i = 0; i < t.n; ++i)
     if (t.kind[i] != models::joint_kind::revolute) t.reversed[i] = false;
-    if (!Loads) {
-      t.torque[i] = false;
-      t.line[i] = -2;
-      t.load[i] = 0;
-    }
-  }
-  return t;
+  return Loads ? t : test::without_force_elements(t);
 }
 
 /// How many joints of the shape are of kind k.
