@@ -51,15 +51,15 @@ if(pch_sources)
   # the header's path when the unit includes it again.
   file(MAKE_DIRECTORY ${PCH_DIR}/flange)
   file(COPY ${PCH_HEADER} DESTINATION ${PCH_DIR}/flange)
-  cpu_time_of("flange.hpp.gch (once)" ${CXX} ${flags} -DFLANGE_COMMON_EXTERN -x c++-header ${PCH_HEADER}
+  cpu_time_of("flange.hpp.gch (once)" ${CXX} ${flags} -DFLANGE_COMMON_EXTERN -DFLANGE_SHARED_STEPS -x c++-header ${PCH_HEADER}
               -o ${PCH_DIR}/flange/flange.hpp.gch)
-  cpu_time_of("flange_common.cpp (once)" ${CXX} ${flags} -DFLANGE_COMMON_EXTERN -c ${COMMON_SOURCE}
+  cpu_time_of("flange_common.cpp (once)" ${CXX} ${flags} -DFLANGE_COMMON_EXTERN -DFLANGE_SHARED_STEPS -c ${COMMON_SOURCE}
               -o ${CMAKE_CURRENT_BINARY_DIR}/flange_common.timing.o)
   foreach(src IN LISTS pch_sources)
     get_filename_component(name ${src} NAME_WE)
     # -Wno-ignored-attributes as flange_precompile_headers gives it (GCC loses
     # Eigen's silencing of it in a precompiled header).
-    cpu_time_of("${name}+pch" ${CXX} -I${PCH_DIR} ${flags} -DFLANGE_COMMON_EXTERN -Wno-ignored-attributes
+    cpu_time_of("${name}+pch" ${CXX} -I${PCH_DIR} ${flags} -DFLANGE_COMMON_EXTERN -DFLANGE_SHARED_STEPS -Wno-ignored-attributes
                 -include flange/flange.hpp -Winvalid-pch -c ${src}
                 -o ${CMAKE_CURRENT_BINARY_DIR}/${name}.pch.timing.o)
   endforeach()

@@ -69,12 +69,20 @@ void derivative_chained(benchmark::State& st, const System& sys, std::array<doub
 /// evaluation's state and derivative tested for finiteness, a budget
 /// counted, the step size watched) against the same dopri5 steps through
 /// the raw system with odeint::integrate_adaptive (the same steps: tested in
-/// simulate_test).
-template <bool Checked, class Scene, class State>
+/// simulate_test). Shared: simulate's run as a target built with
+/// FLANGE_SHARED_STEPS (flange_precompile_headers) makes it, its steps
+/// through a type-erased system (simulate/method.hpp).
+template <bool Checked, class Scene, class State, bool Shared = false>
 void run_1s(benchmark::State& st, const Scene& sc, State x0) {
   for (auto _ : st) {
     State x = x0;
-    if constexpr (Checked) {
+    if constexpr (Shared) {
+      long evals = 0;
+      odeint::null_observer none;
+      flange::detail::observe_steps<odeint::null_observer> watch{none};
+      flange::detail::checked_run<method::dopri5, true>(sc, x, 0.0, 1.0, {.tolerance = 1e-8, .dt = 1e-3}, evals,
+                                                        watch);
+    } else if constexpr (Checked) {
       x = simulate(sc, x, 0.0, 1.0, {.tolerance = 1e-8, .dt = 1e-3});
     } else {
       // std::cref: Odeint passes its system by value from call to call, and a
@@ -235,6 +243,9 @@ void register_all() {
   reg("robot_arm/simulate_1s/raw", [](benchmark::State& s) { run_1s<false>(s, arm, arm_x); });
   reg("gantry_crane/simulate_1s/checked", [](benchmark::State& s) { run_1s<true>(s, crane, crane_x); });
   reg("gantry_crane/simulate_1s/raw", [](benchmark::State& s) { run_1s<false>(s, crane, crane_x); });
+  reg("robot_arm/simulate_1s/shared", [](benchmark::State& s) { run_1s<true, decltype(arm), A2, true>(s, arm, arm_x); });
+  reg("gantry_crane/simulate_1s/shared",
+      [](benchmark::State& s) { run_1s<true, decltype(crane), A4, true>(s, crane, crane_x); });
   reg("robot_arm/rk4_step_eigen/generated",
       [](benchmark::State& s) { rk4_steps<E2, rk4_eigen<E2>>(s, arm, E2(arm_x[0], arm_x[1])); });
   reg("robot_arm/rk4_step_eigen/handwritten",
@@ -323,6 +334,8 @@ int main(int argc, char** argv) {
   ratio("overhead", "robot_arm", "rk4_step_array", "checked", "generated");
   for (const char* scene : {"robot_arm", "gantry_crane"}) ratio("overhead", scene, "rk4_step_array", "by_value", "generated");
   for (const char* scene : {"robot_arm", "gantry_crane"}) ratio("overhead", scene, "simulate_1s", "checked", "raw");
+  for (const char* scene : {"robot_arm", "gantry_crane"})
+    ratio("overhead", scene, "simulate_1s", "shared", "checked");
   for (const char* scene : {"robot_arm", "gantry_crane"})
     ratio("ratio", scene, "jacobian", "exact", "finite_difference");
   // (The exact Jacobian against one derivative, "jacobian <scene> N=<n> …",

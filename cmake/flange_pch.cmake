@@ -1,4 +1,4 @@
-# flange_precompile_headers(<target> [HEADERS <header>...])
+# flange_precompile_headers(<target> [HEADERS <header>...] [INLINE_STEPS])
 #
 # Precompiles <flange/flange.hpp> (or the HEADERS given, e.g.
 # <flange/equations_of_motion.hpp>) for <target>, through CMake's
@@ -12,8 +12,10 @@
 # per target (about twice and once the time of a small scene's unit without
 # them) and again only when flange's headers or the target's flags change;
 # each unit of the target then compiles in the time of its scene's
-# instantiations alone: a pendulum's unit in about a quarter of its time
-# without them (docs/performance.md, "Compile time").
+# instantiations alone: a pendulum's unit in about a sixth of its time
+# without them (docs/performance.md, "Compile time"). The target's runs of
+# simulate's default method share their steps too (FLANGE_SHARED_STEPS,
+# below).
 #
 #   add_executable(my_sim my_sim.cpp)
 #   target_link_libraries(my_sim PRIVATE flange::flange)
@@ -22,7 +24,8 @@
 # Several targets with the same flags can share one precompiled header:
 # target_precompile_headers(other REUSE_FROM my_sim), with
 # flange_common_code(other) for the extern code (or, for many targets, one
-# flange_common_library(common) and flange_common_code(t OBJECTS common)).
+# flange_common_library(common) and flange_common_code(t OBJECTS common))
+# and FLANGE_SHARED_STEPS defined as for my_sim (on the library too).
 set(_flange_common_source ${CMAKE_CURRENT_LIST_DIR}/flange_common.cpp)
 
 # flange_common_code(<target> [OBJECTS <library>]): the target's units
@@ -51,12 +54,22 @@ function(flange_common_library name)
 endfunction()
 
 function(flange_precompile_headers target)
-  cmake_parse_arguments(FP "" "" "HEADERS" ${ARGN})
+  cmake_parse_arguments(FP "INLINE_STEPS" "" "HEADERS" ${ARGN})
   if(NOT FP_HEADERS)
     set(FP_HEADERS <flange/flange.hpp>)
   endif()
   target_precompile_headers(${target} PRIVATE ${FP_HEADERS})
   flange_common_code(${target})
+  # simulate's default method steps a scene through a type-erased system,
+  # its steps compiled once in flange_common.cpp for states of up to 16
+  # numbers (flange/simulate/method.hpp): a small scene's unit about 0.5 s
+  # faster, each derivative evaluation of a run an indirect call (the
+  # paper's arm simulates 1.3-1.45 times slower, the crane 1.0-1.1 times).
+  # INLINE_STEPS keeps the steps in each unit, the scene's derivative
+  # inlined into them.
+  if(NOT FP_INLINE_STEPS)
+    target_compile_definitions(${target} PRIVATE FLANGE_SHARED_STEPS)
+  endif()
   # GCC (up to 12) does not keep the "#pragma GCC diagnostic" state of the
   # precompiled headers: Eigen's silencing of -Wignored-attributes (an
   # attribute of its SIMD packet types, harmless) is lost, and every unit

@@ -18,7 +18,10 @@
 #pragma once
 #include <boost/numeric/odeint/stepper/generation.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
+#include <array>
+#include <type_traits>
 
+#include "flange/detail/lazy.hpp"
 #include "flange/simulate/stepping.hpp"
 
 namespace flange {
@@ -48,6 +51,51 @@ constexpr bool method_available() {
                 "method::bulirsch_stoer needs #include <flange/simulate/bulirsch_stoer.hpp>");
   return complete_type<Method>;
 }
+/// The default method's stepper for the state X.
+template <class X>
+using dopri5_stepper = decltype(method::dopri5::make<X>(0.0, 0.0));
+
+/// Whether a checked run (simulate, the ensembles) steps Method through a
+/// type-erased system (system_ref, stepping.hpp): the default method does
+/// where FLANGE_SHARED_STEPS is defined (flange_precompile_headers defines
+/// it, the same in every unit of a program), so that its steps depend on
+/// the state type alone and, for the states of small scenes (below), are
+/// compiled once per target (FLANGE_COMMON) instead of in every unit that
+/// simulates a scene. It is the edit–compile loop's trade: a small scene's
+/// unit compiles about 0.5 s faster, and each derivative evaluation of a
+/// run is an indirect call (docs/performance.md, "Compile time").
+#if defined(FLANGE_SHARED_STEPS)
+inline constexpr bool shared_steps_defined = true;
+#else
+inline constexpr bool shared_steps_defined = false;
+#endif
+template <class Method>
+inline constexpr bool shared_steps = shared_steps_defined && std::is_same_v<Method, method::dopri5>;
+
+#if defined(FLANGE_SHARED_STEPS)
+// The default method's step for states of 1 to 16 numbers.
+#define FLANGE_DOPRI5_STEP(N)                                                                     \
+  FLANGE_COMMON(void dense_step_shared<dopri5_stepper<std::array<double, N>>, std::array<double, N>>( \
+      dopri5_stepper<std::array<double, N>>&, system_ref<std::array<double, N>>&, double, double))
+FLANGE_DOPRI5_STEP(1)
+FLANGE_DOPRI5_STEP(2)
+FLANGE_DOPRI5_STEP(3)
+FLANGE_DOPRI5_STEP(4)
+FLANGE_DOPRI5_STEP(5)
+FLANGE_DOPRI5_STEP(6)
+FLANGE_DOPRI5_STEP(7)
+FLANGE_DOPRI5_STEP(8)
+FLANGE_DOPRI5_STEP(9)
+FLANGE_DOPRI5_STEP(10)
+FLANGE_DOPRI5_STEP(11)
+FLANGE_DOPRI5_STEP(12)
+FLANGE_DOPRI5_STEP(13)
+FLANGE_DOPRI5_STEP(14)
+FLANGE_DOPRI5_STEP(15)
+FLANGE_DOPRI5_STEP(16)
+#undef FLANGE_DOPRI5_STEP
+#endif
+
 /// The stepping adapter of a method for the scene S and the state X (a
 /// complete method: method_available).
 template <class Method, class X, class S>

@@ -58,7 +58,7 @@ struct counted_system {
 
 /// The loop's check in a checked run (simulate, the ensembles): after each
 /// step the state must be finite; the replay names the reason.
-template <class S, class Stepping>
+template <class S, class Stepping, bool Shared>
 struct checked_steps {
   const S* scene;
   Stepping fresh;  ///< an unused stepping like the one stepping, for replays
@@ -82,7 +82,12 @@ struct checked_steps {
     Stepping st = fresh;
     st.start(x, t, h, t + h);
     try {
-      st.step(sys, t + h);
+      if constexpr (Shared) {
+        system_ref<State> ref(sys);
+        st.step(ref, t + h);
+      } else {
+        st.step(sys, t + h);
+      }
     } catch (const step_collapse&) {
     }
   }
@@ -90,14 +95,20 @@ struct checked_steps {
 
 /// A checked run of the loop with a method: what simulate and an ensemble's
 /// case both do. Returns the number of steps; evals counts the evaluations.
-template <class Method, class S, class State, class Watcher>
+template <class Method, bool Shared = shared_steps<Method>, class S, class State, class Watcher>
 long checked_run(const S& scene, State& x, double t0, double t1, const simulate_options& o, long& evals,
                  Watcher& watcher) {
   if constexpr (method_available<Method>()) {  // else one error, and nothing instantiated after it
     auto st = method_stepping<Method, State>(scene, o.abs_tol(), o.rel_tol());
-    const checked_steps<S, decltype(st)> check{&scene, st};
+    const checked_steps<S, decltype(st), Shared> check{&scene, st};
     counted_system<S> sys{&scene, &evals, o.max_rhs_evals};
-    return integrate(st, sys, scene, x, t0, t1, (t1 >= t0 ? 1 : -1) * o.dt, watcher, check);
+    const double dt = (t1 >= t0 ? 1 : -1) * o.dt;
+    if constexpr (Shared) {  // through a system_ref: the steps compiled once (method.hpp)
+      system_ref<State> ref(sys);
+      return integrate(st, ref, scene, x, t0, t1, dt, watcher, check);
+    } else {
+      return integrate(st, sys, scene, x, t0, t1, dt, watcher, check);
+    }
   } else {
     return 0L;
   }

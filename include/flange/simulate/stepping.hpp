@@ -132,6 +132,50 @@ class controlled_stepping : public in_place_state<State> {
   double tiny_ = 0;
 };
 
+/// A system by reference, its type erased: the derivative behind one
+/// pointer to a function. A stepper's step for it depends on the state type
+/// alone, so it can be compiled once for every scene with that state
+/// (method.hpp's shared dopri5 steps) instead of in every unit that
+/// integrates a scene; each evaluation costs an indirect call.
+template <class State>
+struct system_ref {
+  const void* system;
+  void (*call)(const void*, const State&, State&, double);
+  template <class System>
+  explicit system_ref(const System& s)
+      : system(&s), call([](const void* p, const State& x, State& dxdt, double t) {
+          (*static_cast<const System*>(p))(x, dxdt, t);
+        }) {}
+  void operator()(const State& x, State& dxdt, double t) const { call(system, x, dxdt, t); }
+};
+template <class T>
+inline constexpr bool is_system_ref = false;
+template <class State>
+inline constexpr bool is_system_ref<system_ref<State>> = true;
+
+/// One whole step of a dense-output stepper, the last one aimed at t1
+/// (odeint::integrate_adaptive's loop); a step size below tiny throws.
+template <class Stepper, class System>
+FLANGE_INLINE void dense_step(Stepper& st, System& sys, double t1, double tiny) {
+  namespace odeint = boost::numeric::odeint;
+  const double t = st.current_time();
+  if (passes(t, st.current_time_step(), t1)) st.initialize(st.current_state(), t, t1 - t);
+  try {
+    st.do_step(std::ref(sys));
+  } catch (const odeint::step_adjustment_error&) {
+    throw step_collapse{t, static_cast<double>(st.current_time_step()), max_rejections};
+  }
+  if (std::abs(st.current_time_step()) < tiny && std::abs(t1 - st.current_time()) > tiny) [[unlikely]]
+    throw step_collapse{st.current_time(), static_cast<double>(st.current_time_step()), 0};
+}
+/// The same for a type-erased system, out of line: a function of the
+/// stepper and the state type only, which method.hpp names (FLANGE_COMMON)
+/// for the default method and small states.
+template <class Stepper, class State>
+void dense_step_shared(Stepper& st, system_ref<State>& sys, double t1, double tiny) {
+  dense_step(st, sys, t1, tiny);
+}
+
 /// A dense-output stepper: whole steps while they end before t1, then one
 /// aimed at t1 (odeint::integrate_adaptive's loop); the state anywhere in
 /// the last step from the stepper's interpolation.
@@ -146,16 +190,8 @@ class dense_stepping {
   }
   template <class System>
   FLANGE_INLINE void step(System& sys, double t1) {
-    namespace odeint = boost::numeric::odeint;
-    const double t = st_.current_time();
-    if (passes(t, st_.current_time_step(), t1)) st_.initialize(st_.current_state(), t, t1 - t);
-    try {
-      st_.do_step(std::ref(sys));
-    } catch (const odeint::step_adjustment_error&) {
-      throw step_collapse{t, static_cast<double>(st_.current_time_step()), max_rejections};
-    }
-    if (std::abs(st_.current_time_step()) < tiny_ && std::abs(t1 - st_.current_time()) > tiny_) [[unlikely]]
-      throw step_collapse{st_.current_time(), static_cast<double>(st_.current_time_step()), 0};
+    if constexpr (is_system_ref<System>) dense_step_shared(st_, sys, t1, tiny_);
+    else dense_step(st_, sys, t1, tiny_);
   }
   void restart(const State& x) { st_.initialize(x, st_.current_time(), st_.current_time_step()); }
   const State& state() const { return st_.current_state(); }
