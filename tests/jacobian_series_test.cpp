@@ -103,11 +103,28 @@ TEST_CASE("Planar joints in a planar scene: the plane's arithmetic") {
   test::agree(s, rng, 0.9);
 }
 
-TEST_CASE("a Universal or Cylindrical joint connected frame_b toward the World takes dual numbers") {
+TEST_CASE("a Universal connected frame_b toward the World takes dual numbers") {
   const auto u = scene(World<"world">{}, Universal<"u">{}, Body<"b">({.m = 1, .J = Mat3d::Identity()}),
                        connect<"world.frame_b", "u.frame_b">, connect<"u.frame_a", "b.frame_a">);
-  const auto c = scene(World<"world">{}, Cylindrical<"c">{}, Body<"b">({.m = 1, .J = Mat3d::Identity()}),
-                       connect<"world.frame_b", "c.frame_b">, connect<"c.frame_a", "b.frame_a">);
   STATIC_REQUIRE_FALSE(detail::analytic_derivatives<std::remove_cvref_t<decltype(u)>>());
-  STATIC_REQUIRE_FALSE(detail::analytic_derivatives<std::remove_cvref_t<decltype(c)>>());
+}
+
+// A Cylindrical's turn and slide commute: connected frame_b toward the World
+// (its rates in the other order) it is still a row of one-rate nodes.
+TEST_CASE("a Cylindrical connected frame_b toward the World: the analytic Jacobian") {
+  std::mt19937 rng(907);
+  const auto s = scene(World<"world">({.g = {0.4, -9.81, -0.3}}),
+                       Cylindrical<"c", axis::any>({.n = Vec3d(0.3, -0.2, 1).normalized()}),
+                       Body<"b1", cm::offset>({.m = 1.1, .J = Vec3d(0.02, 0.03, 0.025).asDiagonal(), .r_cm = {0.2, -0.1, 0.1}}),
+                       FixedTranslation<"r1">({.d = {0.3, 0.1, -0.2}}),
+                       Cylindrical<"c2", axis::y>{},
+                       Body<"b2", cm::offset>({.m = 0.6, .J = Vec3d(0.01, 0.012, 0.008).asDiagonal(), .r_cm = {0.1, 0, 0.2}}),
+                       Revolute<"j", axis::x>{},
+                       Body<"b3", cm::offset>({.m = 0.4, .J = Vec3d(0.004, 0.006, 0.005).asDiagonal(), .r_cm = {0, -0.3, 0}}),
+                       connect<"world.frame_b", "c.frame_b">, connect<"c.frame_a", "b1.frame_a">,
+                       connect<"c.frame_a", "r1.frame_a">, connect<"r1.frame_b", "c2.frame_b">,
+                       connect<"c2.frame_a", "b2.frame_a">, connect<"c2.frame_a", "j.frame_a">,
+                       connect<"j.frame_b", "b3.frame_a">);
+  STATIC_REQUIRE(detail::jacobian_takes_analytic<std::remove_cvref_t<decltype(s)>>());
+  test::agree(s, rng);
 }

@@ -69,6 +69,12 @@
 //                                column (a Universal, a Cylindrical, a
 //                                Planar): the analytic Jacobian takes it as a
 //                                row of one-rate joints (dynamics/derivatives.hpp)
+//   commuting_rates              with sequential_rates: true when its columns
+//                                commute (each fixed in the frames the others
+//                                move: a Cylindrical's turn about n and slide
+//                                along it), so that connected frame_b toward
+//                                the World, its rates in the other order, it
+//                                is still such a row
 //   as_cut, cut_state(R, p, w, ṗ, q, v)  what it leaves free when it closes a
 //                                loop (cut_freedom below; without it, it
 //                                cannot be cut), and its coordinates and rates

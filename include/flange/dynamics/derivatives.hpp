@@ -299,14 +299,16 @@ constexpr bool ball_joint() {
 
 /// Whether joint type J, connected Dir, is one the analytic derivatives
 /// handle as one-rate nodes in a row (core/joint.hpp, sequential_rates: a
-/// Universal, a Cylindrical, a Planar), connected frame_a toward the World:
-/// each rate's column is fixed in the frame the rates before it have moved,
-/// as a one-axis joint's in a massless link between them. It transmits
-/// nothing of its own.
+/// Universal, a Cylindrical, a Planar), connected frame_a toward the World
+/// or, where its columns commute (commuting_rates: a Cylindrical), either
+/// way round: each rate's column is fixed in the frame the rates before it
+/// have moved, as a one-axis joint's in a massless link between them. It
+/// transmits nothing of its own.
 template <class J, int Dir>
 constexpr bool sequential_joint() {
   if constexpr (requires { requires J::sequential_rates; }) {
-    return Dir > 0 && J::nq == J::nv && !has_generalized_force<J>;
+    constexpr bool commuting = requires { requires J::commuting_rates; };
+    return (Dir > 0 || commuting) && J::nq == J::nv && !has_generalized_force<J>;
   } else {
     return false;
   }

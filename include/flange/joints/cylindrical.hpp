@@ -75,8 +75,10 @@ class Cylindrical {
   // ---------------------------------------------------------- motion
   static constexpr int nq = 2, nv = 2;
   static constexpr bool reversible = true;
-  /// Along n, then about it (core/joint.hpp).
+  /// Along n, then about it (core/joint.hpp); the two commute, so connected
+  /// either way round.
   static constexpr bool sequential_rates = true;
+  static constexpr bool commuting_rates = true;
   /// It turns about its axis but also slides along it: never planar.
   static constexpr int planar_normal() { return Axis::fixed ? Axis::index : -1; }
   static constexpr bool moves_in_plane(int) { return false; }
