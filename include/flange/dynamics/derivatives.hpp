@@ -88,6 +88,7 @@
 #include "flange/dynamics/links.hpp"
 #include "flange/math/dual.hpp"
 #include "flange/math/quaternion.hpp"
+#include "flange/math/tree_solve.hpp"
 
 namespace flange::detail {
 
@@ -383,33 +384,13 @@ struct derivative_nodes {
   }();
 };
 
-/// Each node's descendants, as lists: those of node k are
-/// list[start[k]] … list[start[k + 1] − 1].
+/// The nodes' tree as math/tree_solve.hpp reads it.
 template <class S>
-struct descendant_lists {
-  static constexpr int NN = S::n_v + 1;
+struct node_parents {
   static constexpr const auto& parent = derivative_nodes<S>::table.parent;
-  static constexpr int total = [] {
-    int n = 0;
-    for (int c = 1; c < NN; ++c)
-      for (int a = parent[c]; a != 0; a = parent[a]) ++n;
-    return n;
-  }();
-  static constexpr std::array<int, NN + 1> start = [] {
-    std::array<int, NN + 1> r{};
-    for (int c = 1; c < NN; ++c)
-      for (int a = parent[c]; a != 0; a = parent[a]) ++r[a + 1];
-    for (int k = 1; k <= NN; ++k) r[k] += r[k - 1];
-    return r;
-  }();
-  static constexpr std::array<int, total> list = [] {
-    std::array<int, total> r{};
-    std::array<int, NN + 1> fill = start;
-    for (int c = 1; c < NN; ++c)
-      for (int a = parent[c]; a != 0; a = parent[a]) r[fill[a]++] = c;
-    return r;
-  }();
 };
+template <class S>
+using descendant_lists = tree_lists<node_parents<S>>;
 
 /// The rate of row r of acceleration_derivatives' result: node r + 1's.
 template <class S>
@@ -537,9 +518,10 @@ link_pose<D, velocity_in::link> local_lanes(const Mat3d& Rw, const Vec3d& r, con
   return P;
 }
 
-/// The matrix acceleration_derivatives fills: a row per rate, in link order.
+/// The matrix acceleration_derivatives fills: a row per rate, in link order,
+/// its 2·n_v + 1 columns padded (with zeros) to math/tree_solve.hpp's row.
 template <class S>
-using derivative_rows = Eigen::Matrix<double, S::n_v, 2 * S::n_v + 1, Eigen::RowMajor>;
+using derivative_rows = Eigen::Matrix<double, S::n_v, tree_solve_row(2 * S::n_v + 1), Eigen::RowMajor>;
 
 /// ∂v̇/∂q, ∂v̇/∂v and ∂v̇/∂t at (t, q, v) as the columns of out, and v̇ itself
 /// into vdot when given. Columns in rate order: first the directions of q,
@@ -662,7 +644,11 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
       if (nodes::table.parent[n] != n - 1) return false;
     return true;
   }();
-  if constexpr (!chain) out.setZero();
+  if constexpr (!chain) {
+    out.setZero();
+  } else if constexpr (constexpr int padding = tree_solve_row(2 * N + 1) - (2 * N + 1); padding > 0) {
+    out.template rightCols<padding>().setZero();
+  }
   for (int n = NN - 1; n >= 1; --n) {
     const int i = rate[n];
     y[n] = Ic[n] * s[n];
@@ -900,42 +886,14 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
         for (int j = i; j != 0; j = parent[j]) M(i - 1, j - 1) -= M(k - 1, i - 1) * M(k - 1, j - 1);
     }
   }
-  // Both triangular solves as sums into one row held in registers, over a
-  // block of columns at a time: Cᵀ·y = b from the leaves,
-  // y_k = (b_k − Σ_{c below k} C(c, k)·y_c) / C(k, k), then C·x = y from the
-  // root, x_k = (y_k − Σ_{a above k} C(k, a)·x_a) / C(k, k).
+  // Both triangular solves (math/tree_solve.hpp): M's factor with the
+  // tree's zeros, below listing each node's descendants.
   using below = descendant_lists<S>;
   std::array<double, NN> inv;
   for (int k = 1; k < NN; ++k) inv[k] = 1 / M(k - 1, k - 1);
-  auto solve = [&]<int W>(auto& X, int c0, std::integral_constant<int, W>) {
-    using Row = Eigen::Matrix<double, 1, W>;
-    auto row = [&](int k) { return X.row(k - 1).template segment<W>(c0); };
-    // Two sums in turn, so that each waits on its own last product only.
-    for (int k = NN - 1; k >= 1; --k) {
-      Row acc = row(k), acc2 = Row::Zero();
-      int e = below::start[k];
-      const int end = below::start[k + 1];
-      for (; e + 1 < end; e += 2) {
-        acc -= M(below::list[e] - 1, k - 1) * row(below::list[e]);
-        acc2 -= M(below::list[e + 1] - 1, k - 1) * row(below::list[e + 1]);
-      }
-      if (e < end) acc -= M(below::list[e] - 1, k - 1) * row(below::list[e]);
-      row(k) = (acc + acc2) * inv[k];
-    }
-    for (int k = 1; k < NN; ++k) {
-      Row acc = row(k), acc2 = Row::Zero();
-      int a = parent[k];
-      for (; a != 0 && parent[a] != 0; a = parent[parent[a]]) {
-        acc -= M(k - 1, a - 1) * row(a);
-        acc2 -= M(k - 1, parent[a] - 1) * row(parent[a]);
-      }
-      if (a != 0) acc -= M(k - 1, a - 1) * row(a);
-      row(k) = (acc + acc2) * inv[k];
-    }
-  };
   // v̇ = M⁻¹·(Q − τ⁰); then each node's acceleration changes by δa_n = δa_P +
   // s_n·v̇_n, and ψ_n = s_n × a_V − u_n × v_V follows (V: vparent).
-  solve(b, 0, std::integral_constant<int, 1>{});
+  tree_solve_block<below, 1>(M.data(), N, inv.data(), b.data(), 1, 0);
   if (vdot)
     for (int n = 1; n < NN; ++n) vdot[rate[n]] = b[n - 1];
   std::array<spatial<G>, NN> da;
@@ -980,7 +938,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   }
   for (int k = 0; k < reading::count; ++k)
     for (int c = 0; c <= 2 * N; ++c) out(last[reading::link[k]] - 1, c) += dQ_read[k].d[c];
-  if constexpr (local) out += dL;
+  if constexpr (local) out.template leftCols<2 * N + 1>() += dL;
   if constexpr (loaded && !local) {
     // ∂W_L/∂x: the loads' own derivatives turned into the world, and for q_j
     // of L's ancestors (and L) the turn of W_L itself, s_j ×* W_L; each
@@ -999,16 +957,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
       }
     }
   }
-  // One block up to 40 columns; else blocks of 16, the last one taking the
-  // remainder (16 to 31 columns), so that no block is a narrow tail.
-  constexpr int C = 2 * N + 1;
-  if constexpr (C <= 40) {
-    solve(out, 0, std::integral_constant<int, C>{});
-  } else {
-    constexpr int last_block = 16 + C % 16;
-    for (int c0 = 0; c0 + last_block < C; c0 += 16) solve(out, c0, std::integral_constant<int, 16>{});
-    solve(out, C - last_block, std::integral_constant<int, last_block>{});
-  }
+  tree_solve<below, 2 * N + 1>(M.data(), N, inv.data(), out.data());
   return {};
 }
 

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "flange/detail/cpu.hpp"
 #include "flange/detail/inline.hpp"
 
 #if defined(__x86_64__) && defined(__GLIBC__) && !defined(FLANGE_NO_LIBMVEC)
@@ -57,12 +58,6 @@ template <class T>
 
 namespace detail {
 #ifdef FLANGE_HAS_LIBMVEC
-/// Whether the processor (and the operating system) run AVX2, asked once.
-inline const bool cpu_has_avx2 = [] {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2") != 0;
-}();
-
 // The angles reach the vector functions in registers, two per SSE register:
 // written to memory one by one and read back as one vector, they would stall
 // the load (a store cannot forward to a wider load).

@@ -1,0 +1,80 @@
+// Time of the Jacobian's solve alone (math/tree_solve.hpp): M·X = B for a
+// chain's leaves-first factor and the 2N + 1 right-hand sides of ∂v̇/∂x,
+// by Eigen's rows (SSE2 at the project's flags) and by the AVX2 kernel with
+// fused multiply-adds, in turns. Not part of the CMake build:
+//
+//   g++ -std=c++20 -O3 -DNDEBUG -Iinclude -isystem /usr/include/eigen3 tools/probes/tree_solve_kernels.cpp -o /tmp/ts && taskset -c 1 /tmp/ts
+//
+// Prints, for N = 7, 16, 32 and 64, the median of 15 rounds of 2000 solves
+// for each kernel in ns per solve (the copy of B that starts each solve
+// included), and the largest difference between their results.
+#include <flange/math/tree_solve.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace {
+
+template <int N>
+struct chain_parents {
+  static constexpr std::array<int, N + 1> parent = [] {
+    std::array<int, N + 1> p{};
+    for (int k = 1; k <= N; ++k) p[k] = k - 1;
+    return p;
+  }();
+};
+
+template <class F>
+double median_ns(F&& f) {
+  std::vector<double> t;
+  for (int r = 0; r < 15; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < 2000; ++i) f();
+    t.push_back(std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count() / 2000);
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+template <int N>
+void run() {
+  using Tree = flange::detail::tree_lists<chain_parents<N>>;
+  constexpr int cols = 2 * N + 1, row = flange::detail::tree_solve_row(cols);
+  std::vector<double> C(N * N, 0.0), inv(N + 1), B(N * row, 0.0), X, Y;
+  for (int k = 0; k < N; ++k) {
+    C[k + k * N] = 1 + 0.1 * k;
+    inv[k + 1] = 1 / C[k + k * N];
+    for (int a = 0; a < k; ++a) C[k + a * N] = 0.3 * std::sin(1.3 * k + 0.7 * a);
+  }
+  for (int r = 0; r < N; ++r)
+    for (int c = 0; c < cols; ++c) B[r * row + c] = std::cos(0.9 * r + 0.4 * c);
+  const double blocks = median_ns([&] {
+    X = B;
+    flange::detail::tree_solve_blocks<Tree, cols>(C.data(), N, inv.data(), X.data(), row);
+  });
+  double avx2 = 0, diff = 0;
+#ifdef FLANGE_TREE_SOLVE_AVX2
+  if (flange::detail::cpu_has_avx2_fma) {
+    avx2 = median_ns([&] {
+      Y = B;
+      flange::detail::tree_solve_avx2<Tree, row>(C.data(), N, inv.data(), Y.data());
+    });
+    for (int i = 0; i < N * row; ++i) diff = std::max(diff, std::abs(X[i] - Y[i]));
+  }
+#endif
+  std::printf("tree_solve N=%d columns=%d rows_ns=%.0f avx2_ns=%.0f ratio=%.2f max_difference=%.1e\n", N, cols, blocks,
+              avx2, avx2 > 0 ? blocks / avx2 : 0.0, diff);
+}
+
+}  // namespace
+
+int main() {
+  run<7>();
+  run<16>();
+  run<32>();
+  run<64>();
+}
