@@ -82,12 +82,7 @@ struct checked_steps {
     Stepping st = fresh;
     st.start(x, t, h, t + h);
     try {
-      if constexpr (Shared) {
-        system_ref<State> ref(sys);
-        st.step(ref, t + h);
-      } else {
-        st.step(sys, t + h);
-      }
+      with_system<Shared, State>(sys, [&](auto& s) { st.step(s, t + h); });
     } catch (const step_collapse&) {
     }
   }
@@ -103,12 +98,8 @@ long checked_run(const S& scene, State& x, double t0, double t1, const simulate_
     const checked_steps<S, decltype(st), Shared> check{&scene, st};
     counted_system<S> sys{&scene, &evals, o.max_rhs_evals};
     const double dt = (t1 >= t0 ? 1 : -1) * o.dt;
-    if constexpr (Shared) {  // through a system_ref: the steps compiled once (method.hpp)
-      system_ref<State> ref(sys);
-      return integrate(st, ref, scene, x, t0, t1, dt, watcher, check);
-    } else {
-      return integrate(st, sys, scene, x, t0, t1, dt, watcher, check);
-    }
+    return with_system<Shared, State>(
+        sys, [&](auto& s) { return integrate(st, s, scene, x, t0, t1, dt, watcher, check); });
   } else {
     return 0L;
   }

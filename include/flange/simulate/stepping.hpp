@@ -148,6 +148,17 @@ struct system_ref {
         }) {}
   void operator()(const State& x, State& dxdt, double t) const { call(system, x, dxdt, t); }
 };
+/// f(sys), or where Shared f of a system_ref to it: the steps that take it
+/// then depend on the state type alone (simulate/method.hpp compiles them once).
+template <bool Shared, class State, class System, class F>
+FLANGE_INLINE decltype(auto) with_system(System& sys, F&& f) {
+  if constexpr (Shared) {
+    system_ref<State> ref(sys);
+    return f(ref);
+  } else {
+    return f(sys);
+  }
+}
 template <class T>
 inline constexpr bool is_system_ref = false;
 template <class State>
