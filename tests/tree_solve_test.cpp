@@ -8,6 +8,8 @@
 #include <catch2/catch.hpp>
 #include <flange/math/tree_solve.hpp>
 
+#include "tree_parents.hpp"
+
 #include <array>
 #include <cmath>
 #include <random>
@@ -19,14 +21,7 @@ using namespace flange;
 
 namespace {
 
-template <int N>
-struct chain_parents {
-  static constexpr std::array<int, N + 1> parent = [] {
-    std::array<int, N + 1> p{};
-    for (int k = 1; k <= N; ++k) p[k] = k - 1;
-    return p;
-  }();
-};
+using test::chain_parents;
 /// Two branches from node 1, one branching again; a second root at node 8.
 struct branched_parents {
   static constexpr std::array<int, 11> parent{0, 0, 1, 2, 1, 4, 4, 5, 0, 8, 8};

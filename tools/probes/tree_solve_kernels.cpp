@@ -10,6 +10,8 @@
 // included), and the largest difference between their results.
 #include <flange/math/tree_solve.hpp>
 
+#include "../../tests/tree_parents.hpp"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -19,14 +21,7 @@
 
 namespace {
 
-template <int N>
-struct chain_parents {
-  static constexpr std::array<int, N + 1> parent = [] {
-    std::array<int, N + 1> p{};
-    for (int k = 1; k <= N; ++k) p[k] = k - 1;
-    return p;
-  }();
-};
+using flange::test::chain_parents;
 
 template <class F>
 double median_ns(F&& f) {

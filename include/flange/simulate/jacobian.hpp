@@ -50,14 +50,17 @@ constexpr int jacobian_width(int n) { return (n + jacobian_passes(n) - 1) / jaco
 /// time (directions 0 … n − 1 the state, n the time), jacobian_width of them
 /// a pass: body(xd, td, first) for each, where direction first + l is lane l
 /// of xd and td and the others are constants. Its results' lane l goes to
-/// column first + l, or to ∂/∂t when that is n (lane_columns).
+/// column first + l, or to ∂/∂t when that is n (lane_columns). Both, and
+/// the lambdas given them, are always inlined: a tiny scene's Jacobian is
+/// a few of its derivatives, and through the calls the paper's arm took
+/// 200 ns against 90.
 template <int n, class State, class Body>
-void dual_passes(const State& x, double t, Body&& body) {
+FLANGE_INLINE void dual_passes(const State& x, double t, Body&& body) {
   constexpr int W = jacobian_width(n + 1);
   using D = dual<double, W>;
   std::array<D, n> xd;
   for (int first = 0; first <= n; first += W) {
-    auto seed = [&](double value, int direction) {
+    auto seed = [&](double value, int direction) FLANGE_INLINE_LAMBDA {
       return direction >= first && direction < first + W ? D::variable(value, direction - first) : D(value);
     };
     for (int i = 0; i < n; ++i) xd[i] = seed(x[i], i);
@@ -67,7 +70,7 @@ void dual_passes(const State& x, double t, Body&& body) {
 /// For each lane l of the pass from `first` that is a direction, f(l, c)
 /// with c its column (n: the time).
 template <int n, class F>
-void lane_columns(int first, F&& f) {
+FLANGE_INLINE void lane_columns(int first, F&& f) {
   constexpr int W = jacobian_width(n + 1);
   for (int l = 0; l < W && first + l <= n; ++l) f(l, first + l);
 }
@@ -80,9 +83,9 @@ jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen
   constexpr int n = S::n_state;
   std::array<dual<double, detail::jacobian_width(n + 1)>, n> fd;
   jacobian_matrix<S> J;
-  detail::dual_passes<n>(x, t, [&](const auto& xd, const auto& td, int first) {
+  detail::dual_passes<n>(x, t, [&](const auto& xd, const auto& td, int first) FLANGE_INLINE_LAMBDA {
     scene(xd, fd, td);
-    detail::lane_columns<n>(first, [&](int l, int c) {
+    detail::lane_columns<n>(first, [&](int l, int c) FLANGE_INLINE_LAMBDA {
       for (int i = 0; i < n; ++i)
         if (c < n) J(i, c) = fd[i].d[l];
         else if (dfdt) (*dfdt)(i) = fd[i].d[l];
