@@ -51,9 +51,9 @@ constexpr int jacobian_width(int n) { return (n + jacobian_passes(n) - 1) / jaco
 /// a pass: body(xd, td, first) for each, where direction first + l is lane l
 /// of xd and td and the others are constants. Its results' lane l goes to
 /// column first + l, or to ∂/∂t when that is n (lane_columns). Both, and
-/// the lambdas given them, are always inlined: a tiny scene's Jacobian is
-/// a few of its derivatives, and through the calls the paper's arm took
-/// 200 ns against 90.
+/// the lambdas jacobian_dual gives them, are always inlined: a tiny scene's
+/// Jacobian is a few of its derivatives, and through the calls the paper's
+/// arm took 200 ns against 90.
 template <int n, class State, class Body>
 FLANGE_INLINE void dual_passes(const State& x, double t, Body&& body) {
   constexpr int W = jacobian_width(n + 1);
