@@ -1,4 +1,4 @@
-// Trees by their parents, as math/tree_solve.hpp's tree_lists reads them
+// Trees by their parents, as math/tree_solve.hpp's tree_runs reads them
 // (tree_solve_test.cpp, tools/probes/tree_solve_kernels.cpp).
 #pragma once
 #include <array>

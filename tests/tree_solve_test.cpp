@@ -67,7 +67,7 @@ double solve_error(int N, int cols, int ld, const std::vector<double>& C, const 
 
 template <class Parents>
 void check_tree(std::mt19937& rng) {
-  using Tree = detail::tree_lists<Parents>;
+  using Tree = detail::tree_runs<Parents>;
   constexpr int N = Tree::NN - 1, cols = 2 * N + 1, ld = detail::tree_solve_row(cols);
   static_assert(ld % 4 == 0 && ld >= cols && ld < cols + 4);
   std::vector<double> C, inv;
@@ -119,12 +119,25 @@ TEST_CASE("tree_solve: both kernels solve a tree's M·X = B as a dense solve in 
 #endif
 }
 
-TEST_CASE("tree_solve: a tree's descendant lists name each node's descendants once, in node order") {
-  using Tree = detail::tree_lists<branched_parents>;
-  // Node 1: 2, 3, 4, 5, 6, 7; node 4: 5, 6, 7; node 8: 9, 10; leaves none.
-  const std::vector<std::vector<int>> expect{{}, {2, 3, 4, 5, 6, 7}, {3}, {}, {5, 6, 7}, {7}, {}, {}, {9, 10}, {}, {}};
+TEST_CASE("tree_solve: a tree's runs name each node's descendants and ancestors once, in node order") {
+  using Tree = detail::tree_runs<branched_parents>;
+  auto nodes = [](const auto& start, const auto& runs, int k) {
+    std::vector<int> r;
+    for (int b = start[k]; b < start[k + 1]; ++b)
+      for (int x = runs[b].lo; x < runs[b].hi; ++x) r.push_back(x);
+    return r;
+  };
+  // Below node 1: 2 … 7; node 4: 5, 6, 7; node 8: 9, 10; leaves none.
+  const std::vector<std::vector<int>> below{{}, {2, 3, 4, 5, 6, 7}, {3}, {}, {5, 6, 7}, {7}, {}, {}, {9, 10}, {}, {}};
+  // Above node 7: 5, 4, 1, in two runs (1; 4, 5).
+  const std::vector<std::vector<int>> above{{}, {}, {1}, {1, 2}, {1}, {1, 4}, {1, 4}, {1, 4, 5}, {}, {8}, {8}};
   for (int k = 1; k < Tree::NN; ++k) {
-    std::vector<int> got(Tree::list.begin() + Tree::start[k], Tree::list.begin() + Tree::start[k + 1]);
-    CHECK(got == expect[k]);
+    CHECK(nodes(Tree::below_start, Tree::below, k) == below[k]);
+    CHECK(nodes(Tree::above_start, Tree::above, k) == above[k]);
   }
+  CHECK(Tree::above_start[8] - Tree::above_start[7] == 2);
+  // A chain is one run each way.
+  using Chain = detail::tree_runs<chain_parents<16>>;
+  CHECK(Chain::below.size() == 15);
+  CHECK(Chain::above.size() == 15);
 }

@@ -390,7 +390,7 @@ struct node_parents {
   static constexpr const auto& parent = derivative_nodes<S>::table.parent;
 };
 template <class S>
-using descendant_lists = tree_lists<node_parents<S>>;
+using node_runs = tree_runs<node_parents<S>>;
 
 /// The rate of row r of acceleration_derivatives' result: node r + 1's.
 template <class S>
@@ -887,13 +887,13 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
     }
   }
   // Both triangular solves (math/tree_solve.hpp): M's factor with the
-  // tree's zeros, below listing each node's descendants.
-  using below = descendant_lists<S>;
+  // tree's zeros, tree giving each node's descendants and ancestors.
+  using tree = node_runs<S>;
   std::array<double, NN> inv;
   for (int k = 1; k < NN; ++k) inv[k] = 1 / M(k - 1, k - 1);
   // v̇ = M⁻¹·(Q − τ⁰); then each node's acceleration changes by δa_n = δa_P +
   // s_n·v̇_n, and ψ_n = s_n × a_V − u_n × v_V follows (V: vparent).
-  tree_solve_block<below, 1>(M.data(), N, inv.data(), b.data(), 1, 0);
+  tree_solve_block<tree, 1>(M.data(), N, inv.data(), b.data(), 1, 0);
   if (vdot)
     for (int n = 1; n < NN; ++n) vdot[rate[n]] = b[n - 1];
   std::array<spatial<G>, NN> da;
@@ -957,7 +957,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
       }
     }
   }
-  tree_solve<below, 2 * N + 1>(M.data(), N, inv.data(), out.data());
+  tree_solve<tree, 2 * N + 1>(M.data(), N, inv.data(), out.data());
   return {};
 }
 

@@ -10,9 +10,12 @@
 // the 2N + 1 columns of ∂v̇/∂x: N²·(2N + 1) multiply-adds on a chain of N
 // rates, a large share of the Jacobian's time for long chains.
 //
-// The tree is a type whose tables are known at compile time (tree_lists
-// below, from the nodes' parents). Nodes are numbered 1 … NN − 1 with
-// parents first, 0 the root; row k − 1 of X and of C are node k's.
+// The tree is a type whose tables are known at compile time (tree_runs
+// below, from the nodes' parents: each node's descendants and ancestors as
+// runs of consecutive nodes). Nodes are numbered 1 … NN − 1 with parents
+// first, 0 the root; row k − 1 of X and of C are node k's. X's rows are
+// read four numbers at a time: where X starts on a 32-byte boundary, as
+// simulate/jacobian.hpp places it, no read straddles two cache lines.
 //
 // Two kernels, the same sums: tree_solve_block, Eigen's rows of a fixed
 // width (SSE2 on x86-64 unless the build asks for more), and on x86-64 where
@@ -35,31 +38,70 @@
 
 namespace flange::detail {
 
+/// Nodes lo … hi − 1.
+struct node_run {
+  int lo, hi;
+};
+
+/// The runs of consecutive nodes among x = 1 … NN − 1 for which
+/// in(k, x) holds, for each node k = 1 … NN − 1 in turn: their count, and
+/// into start (where node k's begin) and runs when given.
+template <int NN, class In>
+constexpr int collect_runs(In in, std::array<int, NN + 1>* start, node_run* runs) {
+  int n = 0;
+  for (int k = 1; k < NN; ++k) {
+    if (start) (*start)[k] = n;
+    for (int x = 1; x < NN; ++x) {
+      if (!in(k, x) || (x > 1 && in(k, x - 1))) continue;
+      int hi = x + 1;
+      while (hi < NN && in(k, hi)) ++hi;
+      if (runs) runs[n] = {x, hi};
+      ++n;
+    }
+  }
+  if (start) (*start)[NN] = n;
+  return n;
+}
+
 /// The tree of Parents::parent (a std::array: node k's parent, below k; 0
-/// the root) with each node's descendants as lists: those of node k are
-/// list[start[k]] … list[start[k + 1] − 1], in node order.
+/// the root) with each node's descendants and its ancestors as runs of
+/// consecutive nodes, in node order: those of node k are below[b] for b in
+/// below_start[k] … below_start[k + 1] − 1, and above[…] likewise. A chain
+/// is one run each way; a tree numbered depth first has one run below each
+/// node, and above it one per branch on its way to the root. The sums
+/// then walk rows and factor entries a fixed stride apart, with no table
+/// read per term.
 template <class Parents>
-struct tree_lists {
+struct tree_runs {
   static constexpr const auto& parent = Parents::parent;
   static constexpr int NN = int(parent.size());
-  static constexpr int total = [] {
-    int n = 0;
-    for (int c = 1; c < NN; ++c)
-      for (int a = parent[c]; a != 0; a = parent[a]) ++n;
-    return n;
-  }();
-  static constexpr std::array<int, NN + 1> start = [] {
-    std::array<int, NN + 1> r{};
-    for (int c = 1; c < NN; ++c)
-      for (int a = parent[c]; a != 0; a = parent[a]) ++r[a + 1];
-    for (int k = 1; k <= NN; ++k) r[k] += r[k - 1];
+  /// up[x][a]: a is a strict ancestor of x.
+  static constexpr auto up = [] {
+    std::array<std::array<bool, NN>, NN> r{};
+    for (int x = 1; x < NN; ++x)
+      for (int a = parent[x]; a != 0; a = parent[a]) r[x][a] = true;
     return r;
   }();
-  static constexpr std::array<int, total> list = [] {
-    std::array<int, total> r{};
-    std::array<int, NN + 1> fill = start;
-    for (int c = 1; c < NN; ++c)
-      for (int a = parent[c]; a != 0; a = parent[a]) r[fill[a]++] = c;
+  static constexpr auto is_below = [](int k, int x) { return up[x][k]; };
+  static constexpr auto is_above = [](int k, int x) { return up[k][x]; };
+  static constexpr std::array<int, NN + 1> below_start = [] {
+    std::array<int, NN + 1> r{};
+    collect_runs<NN>(is_below, &r, nullptr);
+    return r;
+  }();
+  static constexpr std::array<int, NN + 1> above_start = [] {
+    std::array<int, NN + 1> r{};
+    collect_runs<NN>(is_above, &r, nullptr);
+    return r;
+  }();
+  static constexpr std::array<node_run, below_start[NN]> below = [] {
+    std::array<node_run, below_start[NN]> r{};
+    collect_runs<NN>(is_below, nullptr, r.data());
+    return r;
+  }();
+  static constexpr std::array<node_run, above_start[NN]> above = [] {
+    std::array<node_run, above_start[NN]> r{};
+    collect_runs<NN>(is_above, nullptr, r.data());
     return r;
   }();
 };
@@ -72,26 +114,29 @@ FLANGE_INLINE void tree_solve_block(const double* C, int ldc, const double* inv,
   constexpr int NN = Tree::NN;
   using Row = Eigen::Matrix<double, 1, W>;
   auto row = [&](int k) FLANGE_INLINE_LAMBDA { return Eigen::Map<Row>(X + (k - 1) * ldx + c0); };
-  auto c = [&](int r, int col) FLANGE_INLINE_LAMBDA { return C[(r - 1) + (col - 1) * ldc]; };
+  // acc, acc2 −= the run's rows times m[0], m[ms], m[2·ms], …
+  auto run = [&](Row& acc, Row& acc2, const double* m, int ms, node_run r) FLANGE_INLINE_LAMBDA {
+    int d = r.lo;
+    for (; d + 1 < r.hi; d += 2, m += 2 * ms) {
+      acc -= m[0] * row(d);
+      acc2 -= m[ms] * row(d + 1);
+    }
+    if (d < r.hi) acc -= m[0] * row(d);
+  };
   for (int k = NN - 1; k >= 1; --k) {
     Row acc = row(k), acc2 = Row::Zero();
-    int e = Tree::start[k];
-    const int end = Tree::start[k + 1];
-    for (; e + 1 < end; e += 2) {
-      acc -= c(Tree::list[e], k) * row(Tree::list[e]);
-      acc2 -= c(Tree::list[e + 1], k) * row(Tree::list[e + 1]);
+    for (int b = Tree::below_start[k]; b < Tree::below_start[k + 1]; ++b) {
+      const node_run r = Tree::below[b];
+      run(acc, acc2, C + (r.lo - 1) + (k - 1) * ldc, 1, r);
     }
-    if (e < end) acc -= c(Tree::list[e], k) * row(Tree::list[e]);
     row(k) = (acc + acc2) * inv[k];
   }
   for (int k = 1; k < NN; ++k) {
     Row acc = row(k), acc2 = Row::Zero();
-    int a = Tree::parent[k];
-    for (; a != 0 && Tree::parent[a] != 0; a = Tree::parent[Tree::parent[a]]) {
-      acc -= c(k, a) * row(a);
-      acc2 -= c(k, Tree::parent[a]) * row(Tree::parent[a]);
+    for (int b = Tree::above_start[k]; b < Tree::above_start[k + 1]; ++b) {
+      const node_run r = Tree::above[b];
+      run(acc, acc2, C + (k - 1) + (r.lo - 1) * ldc, ldc, r);
     }
-    if (a != 0) acc -= c(k, a) * row(a);
     row(k) = (acc + acc2) * inv[k];
   }
 }
@@ -115,81 +160,73 @@ FLANGE_INLINE void tree_solve_blocks(const double* C, int ldc, const double* inv
 constexpr int tree_solve_row(int cols) { return (cols + 3) / 4 * 4; }
 
 #ifdef FLANGE_TREE_SOLVE_AVX2
-/// acc[p] −= m[p]·x[p] (V registers of four columns) for the first `count`
-/// of the P terms.
-template <int V, int P>
-[[gnu::target("avx2,fma"), gnu::always_inline]] inline void tree_solve_terms(__m256d (&acc)[P][V],
-                                                                            const double* const (&x)[P],
-                                                                            const double (&m)[P], int count) {
-  for (int p = 0; p < P; ++p)
-    if (p < count) {
-      const __m256d b = _mm256_set1_pd(m[p]);
-      for (int v = 0; v < V; ++v) acc[p][v] = _mm256_fnmadd_pd(b, _mm256_loadu_pd(x[p] + 4 * v), acc[p][v]);
+/// acc[0], acc[1] −= the run's rows (x, x + ldx, …; V registers of four
+/// columns each) times m[0], m[ms], m[2·ms], …, the two sums in turn.
+template <int V>
+[[gnu::target("avx2,fma"), gnu::always_inline]] inline void tree_solve_run(__m256d (&acc)[2][V], const double* m, int ms,
+                                                                          const double* x, int ldx, int n) {
+  int i = 0;
+  for (; i + 1 < n; i += 2, m += 2 * ms, x += 2 * ldx) {
+    const __m256d b0 = _mm256_set1_pd(m[0]), b1 = _mm256_set1_pd(m[ms]);
+    for (int v = 0; v < V; ++v) {
+      acc[0][v] = _mm256_fnmadd_pd(b0, _mm256_loadu_pd(x + 4 * v), acc[0][v]);
+      acc[1][v] = _mm256_fnmadd_pd(b1, _mm256_loadu_pd(x + ldx + 4 * v), acc[1][v]);
     }
+  }
+  if (i < n) {
+    const __m256d b0 = _mm256_set1_pd(m[0]);
+    for (int v = 0; v < V; ++v) acc[0][v] = _mm256_fnmadd_pd(b0, _mm256_loadu_pd(x + 4 * v), acc[0][v]);
+  }
 }
 
-/// Row xk ← (the P sums of acc added) / its pivot (s = 1 / C(k, k)).
-template <int V, int P>
-[[gnu::target("avx2,fma"), gnu::always_inline]] inline void tree_solve_finish(__m256d (&acc)[P][V], double s,
+/// Row xk ← (the two sums added) / its pivot (s = 1 / C(k, k)).
+template <int V>
+[[gnu::target("avx2,fma"), gnu::always_inline]] inline void tree_solve_finish(__m256d (&acc)[2][V], double s,
                                                                              double* xk) {
   const __m256d d = _mm256_set1_pd(s);
-  for (int v = 0; v < V; ++v) {
-    for (int p = 1; p < P; ++p) acc[0][v] = _mm256_add_pd(acc[0][v], acc[p][v]);
-    _mm256_storeu_pd(xk + 4 * v, _mm256_mul_pd(acc[0][v], d));
-  }
+  for (int v = 0; v < V; ++v) _mm256_storeu_pd(xk + 4 * v, _mm256_mul_pd(_mm256_add_pd(acc[0][v], acc[1][v]), d));
 }
 
 /// The sums start from row xk.
-template <int V, int P>
-[[gnu::target("avx2,fma"), gnu::always_inline]] inline void tree_solve_start(__m256d (&acc)[P][V], const double* xk) {
+template <int V>
+[[gnu::target("avx2,fma"), gnu::always_inline]] inline void tree_solve_start(__m256d (&acc)[2][V], const double* xk) {
   for (int v = 0; v < V; ++v) {
     acc[0][v] = _mm256_loadu_pd(xk + 4 * v);
-    for (int p = 1; p < P; ++p) acc[p][v] = _mm256_setzero_pd();
+    acc[1][v] = _mm256_setzero_pd();
   }
 }
 
+/// Row k of the tile of X's columns c0 … c0 + 4·V (rows of ldx numbers):
+/// from the leaves (Cᵀ·Y = B: the nodes below k) or from the root (C·X = Y:
+/// the nodes above k).
+template <class Tree, int V, int ldx, bool FromLeaves>
+[[gnu::target("avx2,fma"), gnu::always_inline]] inline void tree_solve_row_avx2(const double* C, int ldc,
+                                                                               const double* inv, double* X, int c0,
+                                                                               int k) {
+  __m256d acc[2][V];
+  double* xk = X + (k - 1) * ldx + c0;
+  tree_solve_start<V>(acc, xk);
+  if constexpr (FromLeaves) {
+    for (int b = Tree::below_start[k]; b < Tree::below_start[k + 1]; ++b) {
+      const node_run r = Tree::below[b];
+      tree_solve_run<V>(acc, C + (r.lo - 1) + (k - 1) * ldc, 1, X + (r.lo - 1) * ldx + c0, ldx, r.hi - r.lo);
+    }
+  } else {
+    for (int b = Tree::above_start[k]; b < Tree::above_start[k + 1]; ++b) {
+      const node_run r = Tree::above[b];
+      tree_solve_run<V>(acc, C + (k - 1) + (r.lo - 1) * ldc, ldc, X + (r.lo - 1) * ldx + c0, ldx, r.hi - r.lo);
+    }
+  }
+  tree_solve_finish<V>(acc, inv[k], xk);
+}
+
 /// The tile of X's columns c0 … c0 + 4·V (rows of ldx numbers), as
-/// tree_solve_block with each product fused, in P sums in turn (each sum a
-/// chain of fused multiply-adds, each waiting on the one before).
-template <class Tree, int V, int P, int ldx>
+/// tree_solve_block with each product fused.
+template <class Tree, int V, int ldx>
 [[gnu::target("avx2,fma")]] void tree_solve_tile_avx2(const double* C, int ldc, const double* inv, double* X, int c0) {
   constexpr int NN = Tree::NN;
-  __m256d acc[P][V];
-  double m[P];
-  const double* x[P];
-  for (int k = NN - 1; k >= 1; --k) {
-    double* xk = X + (k - 1) * ldx + c0;
-    tree_solve_start<V, P>(acc, xk);
-    const int end = Tree::start[k];
-    for (int e = Tree::start[k + 1] - 1; e >= end; e -= P) {
-      int count = 0;
-      for (int p = 0; p < P; ++p)
-        if (e - p >= end) {
-          const int d = Tree::list[e - p];
-          m[p] = C[(d - 1) + (k - 1) * ldc];
-          x[p] = X + (d - 1) * ldx + c0;
-          ++count;
-        }
-      tree_solve_terms<V, P>(acc, x, m, count);
-    }
-    tree_solve_finish<V, P>(acc, inv[k], xk);
-  }
-  for (int k = 1; k < NN; ++k) {
-    double* xk = X + (k - 1) * ldx + c0;
-    tree_solve_start<V, P>(acc, xk);
-    for (int a = Tree::parent[k]; a != 0;) {
-      int count = 0;
-      for (int p = 0; p < P; ++p)
-        if (a != 0) {
-          m[p] = C[(k - 1) + (a - 1) * ldc];
-          x[p] = X + (a - 1) * ldx + c0;
-          a = Tree::parent[a];
-          ++count;
-        }
-      tree_solve_terms<V, P>(acc, x, m, count);
-    }
-    tree_solve_finish<V, P>(acc, inv[k], xk);
-  }
+  for (int k = NN - 1; k >= 1; --k) tree_solve_row_avx2<Tree, V, ldx, true>(C, ldc, inv, X, c0, k);
+  for (int k = 1; k < NN; ++k) tree_solve_row_avx2<Tree, V, ldx, false>(C, ldc, inv, X, c0, k);
 }
 
 /// All Row columns of X (rows of Row numbers, a multiple of four), in tiles
@@ -199,8 +236,8 @@ template <class Tree, int Row>
 [[gnu::target("avx2,fma")]] void tree_solve_avx2(const double* C, int ldc, const double* inv, double* X) {
   static_assert(Row % 4 == 0);
   constexpr int full = Row / 16, rest = Row % 16;
-  for (int t = 0; t < full; ++t) tree_solve_tile_avx2<Tree, 4, 2, Row>(C, ldc, inv, X, 16 * t);
-  if constexpr (rest > 0) tree_solve_tile_avx2<Tree, rest / 4, 2, Row>(C, ldc, inv, X, 16 * full);
+  for (int t = 0; t < full; ++t) tree_solve_tile_avx2<Tree, 4, Row>(C, ldc, inv, X, 16 * t);
+  if constexpr (rest > 0) tree_solve_tile_avx2<Tree, rest / 4, Row>(C, ldc, inv, X, 16 * full);
 }
 #endif
 

@@ -120,7 +120,9 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
   constexpr int nq = S::n_q, nv = S::n_v;
   std::array<double, S::n_state> xs;
   for (int i = 0; i < S::n_state; ++i) xs[i] = x[i];
-  detail::derivative_rows<S> d;
+  // On a 32-byte boundary, so that the solve's four-number reads of its rows
+  // never straddle two cache lines (math/tree_solve.hpp).
+  alignas(32) detail::derivative_rows<S> d;
   if (const auto p = detail::acceleration_derivatives(scene, t, xs.data(), xs.data() + nq, d); p.index >= 0) {
     // M is singular here: the derivative says why (a state that is not
     // finite, or the joint whose pivot failed), in the scene's own words.
