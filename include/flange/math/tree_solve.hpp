@@ -25,6 +25,7 @@
 // Define FLANGE_NO_AVX2 to keep the first everywhere.
 #pragma once
 #include <array>
+#include <utility>
 
 #include <Eigen/Core>
 
@@ -104,41 +105,55 @@ struct tree_runs {
     collect_runs<NN>(is_above, nullptr, r.data());
     return r;
   }();
+  /// Node k's runs below it (Below) or above it, as [first, last).
+  template <bool Below>
+  static constexpr std::pair<const node_run*, const node_run*> runs_of(int k) {
+    const node_run* r = Below ? below.data() : above.data();
+    const auto& start = Below ? below_start : above_start;
+    return {r + start[k], r + start[k + 1]};
+  }
 };
+
+/// The factor entries that multiply run r's rows in row k's sum, the
+/// stride between them run_stride<FromLeaves>(ldc): from the leaves
+/// (Cᵀ·Y = B, r below k) C(d, k) down column k; from the root (C·X = Y, r
+/// above k) C(k, a) along row k.
+template <bool FromLeaves>
+FLANGE_INLINE const double* run_factors(const double* C, int ldc, int k, node_run r) {
+  return FromLeaves ? C + (r.lo - 1) + (k - 1) * ldc : C + (k - 1) + (r.lo - 1) * ldc;
+}
+template <bool FromLeaves>
+FLANGE_INLINE int run_stride(int ldc) {
+  return FromLeaves ? 1 : ldc;
+}
 
 /// Columns c0 … c0 + W of X (rows of ldx numbers, row k − 1 node k's):
 /// C(r, c) = C[r + c·ldc] (column-major), inv[k] = 1 / C(k − 1, k − 1).
-/// Two sums in turn, so that each waits on its own last product only.
-template <class Tree, int W>
-FLANGE_INLINE void tree_solve_block(const double* C, int ldc, const double* inv, double* X, int ldx, int c0) {
-  constexpr int NN = Tree::NN;
+/// Row k from the leaves or from the root, in two sums in turn, so that
+/// each waits on its own last product only; tree_solve_block: every row.
+template <class Tree, int W, bool FromLeaves>
+FLANGE_INLINE void tree_solve_block_row(const double* C, int ldc, const double* inv, double* X, int ldx, int c0,
+                                        int k) {
   using Row = Eigen::Matrix<double, 1, W>;
-  auto row = [&](int k) FLANGE_INLINE_LAMBDA { return Eigen::Map<Row>(X + (k - 1) * ldx + c0); };
-  // acc, acc2 −= the run's rows times m[0], m[ms], m[2·ms], …
-  auto run = [&](Row& acc, Row& acc2, const double* m, int ms, node_run r) FLANGE_INLINE_LAMBDA {
-    int d = r.lo;
-    for (; d + 1 < r.hi; d += 2, m += 2 * ms) {
+  auto row = [&](int n) FLANGE_INLINE_LAMBDA { return Eigen::Map<Row>(X + (n - 1) * ldx + c0); };
+  Row acc = row(k), acc2 = Row::Zero();
+  const int ms = run_stride<FromLeaves>(ldc);
+  for (auto [r, last] = Tree::template runs_of<FromLeaves>(k); r != last; ++r) {
+    const double* m = run_factors<FromLeaves>(C, ldc, k, *r);
+    int d = r->lo;
+    for (; d + 1 < r->hi; d += 2, m += 2 * ms) {
       acc -= m[0] * row(d);
       acc2 -= m[ms] * row(d + 1);
     }
-    if (d < r.hi) acc -= m[0] * row(d);
-  };
-  for (int k = NN - 1; k >= 1; --k) {
-    Row acc = row(k), acc2 = Row::Zero();
-    for (int b = Tree::below_start[k]; b < Tree::below_start[k + 1]; ++b) {
-      const node_run r = Tree::below[b];
-      run(acc, acc2, C + (r.lo - 1) + (k - 1) * ldc, 1, r);
-    }
-    row(k) = (acc + acc2) * inv[k];
+    if (d < r->hi) acc -= m[0] * row(d);
   }
-  for (int k = 1; k < NN; ++k) {
-    Row acc = row(k), acc2 = Row::Zero();
-    for (int b = Tree::above_start[k]; b < Tree::above_start[k + 1]; ++b) {
-      const node_run r = Tree::above[b];
-      run(acc, acc2, C + (k - 1) + (r.lo - 1) * ldc, ldc, r);
-    }
-    row(k) = (acc + acc2) * inv[k];
-  }
+  row(k) = (acc + acc2) * inv[k];
+}
+template <class Tree, int W>
+FLANGE_INLINE void tree_solve_block(const double* C, int ldc, const double* inv, double* X, int ldx, int c0) {
+  constexpr int NN = Tree::NN;
+  for (int k = NN - 1; k >= 1; --k) tree_solve_block_row<Tree, W, true>(C, ldc, inv, X, ldx, c0, k);
+  for (int k = 1; k < NN; ++k) tree_solve_block_row<Tree, W, false>(C, ldc, inv, X, ldx, c0, k);
 }
 
 /// The first Cols columns of X (rows of ldx numbers) by tree_solve_block: one block up to 40 columns;
@@ -206,17 +221,9 @@ template <class Tree, int V, int ldx, bool FromLeaves>
   __m256d acc[2][V];
   double* xk = X + (k - 1) * ldx + c0;
   tree_solve_start<V>(acc, xk);
-  if constexpr (FromLeaves) {
-    for (int b = Tree::below_start[k]; b < Tree::below_start[k + 1]; ++b) {
-      const node_run r = Tree::below[b];
-      tree_solve_run<V>(acc, C + (r.lo - 1) + (k - 1) * ldc, 1, X + (r.lo - 1) * ldx + c0, ldx, r.hi - r.lo);
-    }
-  } else {
-    for (int b = Tree::above_start[k]; b < Tree::above_start[k + 1]; ++b) {
-      const node_run r = Tree::above[b];
-      tree_solve_run<V>(acc, C + (k - 1) + (r.lo - 1) * ldc, ldc, X + (r.lo - 1) * ldx + c0, ldx, r.hi - r.lo);
-    }
-  }
+  for (auto [r, last] = Tree::template runs_of<FromLeaves>(k); r != last; ++r)
+    tree_solve_run<V>(acc, run_factors<FromLeaves>(C, ldc, k, *r), run_stride<FromLeaves>(ldc),
+                      X + (r->lo - 1) * ldx + c0, ldx, r->hi - r->lo);
   tree_solve_finish<V>(acc, inv[k], xk);
 }
 
