@@ -31,7 +31,9 @@
 // from the same passes: τ⁰ at v̇ = 0, v̇ = M⁻¹·(Q − τ⁰), then the
 // accelerations corrected. One forward pass over the links, one backward pass that fills
 // the pairs of a link and its ancestors (O(N²) on a chain), and one Cholesky
-// solve of M with 2N + 1 right-hand sides (O(N³) on a chain).
+// solve of M with 2N + 1 right-hand sides (O(N³) on a chain). They are
+// compiled twice, for SSE2 and for AVX2 with fused multiply-adds, and the
+// processor's is chosen at run time (acceleration_derivatives, at the end).
 //
 // The force elements' loads (torques, springs, dampers, world forces,
 // contacts) are computed by their own code in dual numbers, turned into
@@ -81,6 +83,7 @@
 
 #include <Eigen/Core>
 
+#include "flange/detail/cpu.hpp"
 #include "flange/detail/static_for.hpp"
 #include "flange/dynamics/external.hpp"
 #include "flange/dynamics/forward_dynamics.hpp"
@@ -530,9 +533,14 @@ using derivative_rows = Eigen::Matrix<double, S::n_v, tree_solve_row(2 * S::n_v 
 /// quaternion's four), then v, then t; row r is rate derivative_row_rate<S>[r].
 /// Returns the pivot of M that failed (index ≥ 0: out and vdot are not
 /// written; index is its rate), as the mass-matrix solve reports it.
+/// Always inlined into the two functions that compile it, one for the
+/// instructions every x86-64 runs and one for AVX2 (below), whatever
+/// FLANGE_NO_FORCED_INLINE says.
 template <class S>
-pivot_report<double> acceleration_derivatives(const S& scene, double t, const double* q, const double* v,
-                                              derivative_rows<S>& out, double* vdot = nullptr) {
+[[gnu::always_inline]] inline pivot_report<double> acceleration_derivatives_passes(const S& scene, double t,
+                                                                                  const double* q, const double* v,
+                                                                                  derivative_rows<S>& out,
+                                                                                  double* vdot) {
   static_assert(analytic_derivatives<S>());
   constexpr int NL = S::tree.n_links, N = S::n_v, NN = N + 1;
   using nodes = derivative_nodes<S>;
@@ -959,6 +967,41 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   }
   tree_solve<tree, 2 * N + 1>(M.data(), N, inv.data(), out.data());
   return {};
+}
+
+/// The passes as every x86-64 runs them (SSE2, or what the user's -march
+/// gives).
+template <class S>
+pivot_report<double> acceleration_derivatives_portable(const S& scene, double t, const double* q, const double* v,
+                                                       derivative_rows<S>& out, double* vdot) {
+  return acceleration_derivatives_passes(scene, t, q, v, out, vdot);
+}
+
+#if defined(FLANGE_X86_DISPATCH) && !defined(FLANGE_NO_AVX2)
+/// The same passes compiled for AVX2 with fused multiply-adds: each product
+/// and sum a fused step where the compiler joins them (a cross product three
+/// multiplications and three fused ones instead of six and three), in
+/// three-operand instructions (Eigen's own packets stay SSE2's: they are
+/// chosen when its headers are read). Their results differ from the
+/// portable passes' in the last bits.
+template <class S>
+[[gnu::target("avx2,fma")]] pivot_report<double> acceleration_derivatives_avx2(const S& scene, double t,
+                                                                               const double* q, const double* v,
+                                                                               derivative_rows<S>& out, double* vdot) {
+  return acceleration_derivatives_passes(scene, t, q, v, out, vdot);
+}
+#endif
+
+/// ∂v̇/∂x as acceleration_derivatives_passes gives it, in AVX2 with fused
+/// multiply-adds where the processor runs them (detail/cpu.hpp, asked once)
+/// and FLANGE_NO_AVX2 is not defined, else in the portable code.
+template <class S>
+pivot_report<double> acceleration_derivatives(const S& scene, double t, const double* q, const double* v,
+                                              derivative_rows<S>& out, double* vdot = nullptr) {
+#if defined(FLANGE_X86_DISPATCH) && !defined(FLANGE_NO_AVX2)
+  if (cpu_has_avx2_fma) return acceleration_derivatives_avx2(scene, t, q, v, out, vdot);
+#endif
+  return acceleration_derivatives_portable(scene, t, q, v, out, vdot);
 }
 
 }  // namespace flange::detail
