@@ -1,7 +1,6 @@
 // What the processor runs, asked once at start-up, for the few kernels that
 // pick their instructions at run time (math/sincos.hpp's cosines,
-// math/tree_solve.hpp's triangular solves, dynamics/derivatives.hpp's
-// passes): the library is built for the
+// math/tree_solve.hpp's triangular solves): the library is built for the
 // SSE2 every x86-64 has unless its users ask for more (-march), so wider
 // instructions are chosen here, where the processor has them.
 //
