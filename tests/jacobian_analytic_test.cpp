@@ -35,11 +35,13 @@ constexpr models::tree_shape one_axis_tree() {
 }  // namespace
 
 TEST_CASE("the analytic Jacobian equals the dual-number Jacobian on chains") {
+  // (The chains of seven links and more take the passes' pair loops over
+  // stacked columns, the shorter ones their loops up the ancestors.)
   std::mt19937 rng(48);
   auto p7 = models::random_chain_params<7>(rng);
   agree(models::chain<7, models::runtime_axes>(p7), rng);
-  auto p5 = models::random_chain_params<5>(rng);
-  agree(models::chain<5, models::planar_axes>(p5), rng);
+  auto p8 = models::random_chain_params<8>(rng);
+  agree(models::chain<8, models::planar_axes>(p8), rng);
   auto p4 = models::random_chain_params<4>(rng);
   p4.stiffness = 3;
   p4.damping = 0.4;

@@ -277,6 +277,15 @@ template <class S>
 using geometry_t =
     std::conditional_t<(planar_axis<S>() >= 0), plane<(planar_axis<S>() >= 0 ? planar_axis<S>() : 2)>, space>;
 
+/// A spatial vector's numbers, angular first: six in space, three in the plane.
+FLANGE_INLINE std::array<double, 6> numbers(const spatial<space>& x) {
+  return {x.a[0], x.a[1], x.a[2], x.l[0], x.l[1], x.l[2]};
+}
+template <int K>
+FLANGE_INLINE std::array<double, 3> numbers(const spatial<plane<K>>& x) {
+  return {x.a, x.l[0], x.l[1]};
+}
+
 /// Whether joint type J is one the analytic derivatives handle as one node:
 /// one rate and its column fixed in its link.
 template <class J>
@@ -649,17 +658,60 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   } else if constexpr (constexpr int padding = tree_solve_row(2 * N + 1) - (2 * N + 1); padding > 0) {
     out.template rightCols<padding>().setZero();
   }
+  // On a chain of seven nodes or more without balls or loads on its links,
+  // whose rates follow its nodes (rate[n] = n − 1), node n's ancestors are
+  // nodes 1 … n and their pairs' columns 0 … n − 1: each pair's products are
+  // then sums over the numbers of the columns s_j (and u_j, ψ_j) stacked a
+  // number at a time, loops over j that the compiler vectorizes (sc[c][j]:
+  // number c of s_j). On shorter chains the stacks cost more than they save
+  // (docs/performance.md, "The Jacobian").
+  constexpr bool stacked = chain && !balls && !has_link_loads<S>() && N >= 7 && [] {
+    for (int n = 1; n < NN; ++n)
+      if (nodes::table.rate[n] != n - 1) return false;
+    return true;
+  }();
+  constexpr bool in_space = std::is_same_v<G, space>;
+  constexpr int C = in_space ? 6 : 3, CA = in_space ? 3 : 1;  // numbers, angular ones
+  using stack = std::conditional_t<stacked, std::array<std::array<double, NN>, C>, std::array<int, 0>>;
+  alignas(32) stack sc, uc, pc;  // s, u (which ∂/∂v reads without balls) and, below, ψ
+  if constexpr (stacked)
+    for (int n = 1; n < NN; ++n) {
+      const auto sn = numbers(s[n]), un = numbers(u[n]);
+      for (int c = 0; c < C; ++c) {
+        sc[c][n] = sn[c];
+        uc[c][n] = un[c];
+      }
+    }
   for (int n = NN - 1; n >= 1; --n) {
     const int i = rate[n];
     y[n] = Ic[n] * s[n];
     z[n] = Bc[n].transposed_times(s[n]);
     b[n - 1] = -s[n].dot(F[n]);
-    for (int j = n; j != 0; j = parent[j]) {
-      M(n - 1, j - 1) = y[n].dot(s[j]);
-      out(n - 1, N + rate[j]) = inner(z[n], s[j].a) + 2 * y[n].dot(uv(j));
-    }
     const spatial<G> Gv = Bc[n] * s[n] + Ic[n] * uv(n) * 2;
-    for (int j = parent[n]; j != 0; j = parent[j]) out(j - 1, N + i) = s[j].dot(Gv);
+    if constexpr (stacked) {
+      const auto yn = numbers(y[n]), zn = numbers(spatial<G>{z[n], G::lin::Zero()}), gv = numbers(Gv);
+      for (int j = 1; j <= n; ++j) {
+        double m = 0, e = 0;
+        for (int c = 0; c < C; ++c) {
+          m += yn[c] * sc[c][j];
+          e += 2 * yn[c] * uc[c][j];
+        }
+        for (int c = 0; c < CA; ++c) e += zn[c] * sc[c][j];
+        M(n - 1, j - 1) = m;
+        out(n - 1, N + j - 1) = e;
+      }
+      for (int j = 1; j < n; ++j) {
+        double e = 0;
+        for (int c = 0; c < C; ++c) e += gv[c] * sc[c][j];
+        out(j - 1, N + i) = e;
+      }
+    } else {
+      for (int j = n; j != 0; j = parent[j]) {
+        M(n - 1, j - 1) = y[n].dot(s[j]);
+        out(n - 1, N + rate[j]) = inner(z[n], s[j].a) + 2 * y[n].dot(uv(j));
+      }
+      for (int j = parent[n]; j != 0; j = parent[j]) out(j - 1, N + i) = s[j].dot(Gv);
+    }
     if (const int P = parent[n]; P != 0) {
       Ic[P] += Ic[n];
       Bc[P] += Bc[n];
@@ -902,6 +954,10 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
     const int P = parent[n], V = vparent[n];
     da[n] = da[P] + s[n] * b[n - 1];
     psi[n] = motion_cross(s[n], acc[V] + da[V]) - motion_cross(u[n], vel[V]);
+    if constexpr (stacked) {
+      const auto pn = numbers(psi[n]);
+      for (int c = 0; c < C; ++c) pc[c][n] = pn[c];
+    }
   }
   // Up the tree again: the subtree's wrench at v̇, F_n = F⁰_n + I_n·δa_n + Y_n
   // with Y_n = Σ over n's children c of (I_c·s_c·v̇_c + Y_c), and the pairs'
@@ -914,13 +970,28 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
     // With loads, ∂s_n/∂q_j = s_j × s_n turns their share: −(s_j × s_n)ᵀ·W_n.
     std::conditional_t<loaded, spatial<G>, int> gw{};
     if constexpr (loaded) gw = force_cross(s[n], W[n]);
-    for (int j = n; j != 0; j = parent[j]) {
-      double e = y[n].dot(psi[j]) - inner(z[n], u[j].a);
-      if constexpr (loaded) e += s[j].dot(gw);
-      out(n - 1, rate[j]) = e;
-    }
     const spatial<G> Gq = force_cross(s[n], F[n]) + Bc[n] * u[n] - Ic[n] * psi[n];
-    for (int j = parent[n]; j != 0; j = parent[j]) {
+    if constexpr (stacked) {
+      const auto yn = numbers(y[n]), zn = numbers(spatial<G>{z[n], G::lin::Zero()}), gq = numbers(Gq);
+      for (int j = 1; j <= n; ++j) {
+        double e = 0;
+        for (int c = 0; c < C; ++c) e += yn[c] * pc[c][j];
+        for (int c = 0; c < CA; ++c) e -= zn[c] * uc[c][j];
+        out(n - 1, j - 1) = e;
+      }
+      for (int j = 1; j < n; ++j) {
+        double e = 0;
+        for (int c = 0; c < C; ++c) e -= gq[c] * sc[c][j];
+        out(j - 1, i) = e;
+      }
+    } else {
+      for (int j = n; j != 0; j = parent[j]) {
+        double e = y[n].dot(psi[j]) - inner(z[n], u[j].a);
+        if constexpr (loaded) e += s[j].dot(gw);
+        out(n - 1, rate[j]) = e;
+      }
+    }
+    for (int j = parent[n]; !stacked && j != 0; j = parent[j]) {
       // Within a ball, node j's column turns with n's rate too: row j,
       // column n as for an ancestor.
       if (balls && nodes::table.group[j] == nodes::table.group[n]) {
