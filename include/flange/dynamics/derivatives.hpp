@@ -409,6 +409,26 @@ inline constexpr auto derivative_row_rate = [] {
   return r;
 }();
 
+/// The coordinate of each rate where it is the rate's own (q̇ = v: a joint
+/// of one rate, rates in series, a ball's translations), −1 for a ball's
+/// rotation rates, whose quaternion moves with all three.
+template <class S>
+inline constexpr auto rate_coordinate = [] {
+  std::array<int, S::n_v> r{};
+  [&]<int... L>(std::integer_sequence<int, L...>) {
+    (
+        [&] {
+          using LI = link_info<S, L + 1>;
+          using J = typename LI::joint_type;
+          int plain = J::nv;
+          if constexpr (ball_links<S>[L + 1]) plain = J::quaternion_at;
+          for (int k = 0; k < J::nv; ++k) r[LI::v + k] = k < plain ? LI::q + k : -1;
+        }(),
+        ...);
+  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+  return r;
+}();
+
 /// The links whose joint's force reads the state (a drive τ(t, x)), in link
 /// order: link[0 … count − 1].
 template <class S>

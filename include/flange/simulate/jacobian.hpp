@@ -132,24 +132,35 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
   }
   jacobian_matrix<S> J;
   J.template topRows<nq>().setZero();
+  // v̇'s rows: ∂/∂v, and ∂/∂q where a coordinate is its rate's (a joint of
+  // one rate, rates in series, a ball's translations). d's rows are J's
+  // columns: copied four rows at a time, so that J's columns (1 KB apart at
+  // 64 rates) take four numbers at a visit and d's rows are read along (64
+  // links: 80 against 67 µs, docs/performance.md).
   constexpr auto row = detail::derivative_row_rate<S>;
-  for (int r = 0; r < nv; ++r) J.row(nq + row[r]).template tail<nv>() = d.row(r).template segment<nv>(nv);
-  // ∂/∂q and q̇'s rows, joint by joint: q̇ = v, and ∂v̇/∂q the rate's column,
-  // for a coordinate of one rate (a ball's translations and a joint's rates
-  // in series too); for a ball's
-  // quaternion Q = (x, y, z, w), q̇ = ½·Q ⊗ (ω, 0) (linear in Q and in ω),
-  // and ∂v̇/∂Q through the turn δ (link coordinates) that a change of Q
-  // makes, δ = 2·vec(Q* ⊗ dQ)/|Q|² (R is homogeneous in Q: a change along Q
-  // turns nothing).
+  constexpr auto coordinate = detail::rate_coordinate<S>;
+  auto copy_rows = [&](int r0, auto width) FLANGE_INLINE_LAMBDA {
+    constexpr int w = decltype(width)::value;
+    for (int c = 0; c < nv; ++c) {
+      if (coordinate[c] >= 0)
+        for (int k = 0; k < w; ++k) J(nq + row[r0 + k], coordinate[c]) = d(r0 + k, c);
+      for (int k = 0; k < w; ++k) J(nq + row[r0 + k], nq + c) = d(r0 + k, nv + c);
+    }
+  };
+  constexpr int tile = 4;
+  for (int r0 = 0; r0 + tile <= nv; r0 += tile) copy_rows(r0, std::integral_constant<int, tile>{});
+  if constexpr (nv % tile != 0) copy_rows(nv - nv % tile, std::integral_constant<int, nv % tile>{});
+  for (int c = 0; c < nv; ++c)
+    if (coordinate[c] >= 0) J(coordinate[c], nq + c) = 1;
+  // A ball's quaternion Q = (x, y, z, w): q̇ = ½·Q ⊗ (ω, 0) (linear in Q and
+  // in ω), and ∂v̇/∂Q through the turn δ (link coordinates) that a change of
+  // Q makes, δ = 2·vec(Q* ⊗ dQ)/|Q|² (R is homogeneous in Q: a change along
+  // Q turns nothing).
   detail::for_links<S>([&](auto l) {
     constexpr int L = decltype(l)::value;
     using LI = detail::link_info<S, L>;
     if constexpr (detail::ball_links<S>[L]) {
       constexpr int qa = LI::joint_type::quaternion_at, qQ = LI::q + qa, vw = LI::v + qa;
-      for (int k = 0; k < qa; ++k) {
-        J(LI::q + k, nq + LI::v + k) = 1;
-        for (int r = 0; r < nv; ++r) J(nq + row[r], LI::q + k) = d(r, LI::v + k);
-      }
       const double* Q = xs.data() + qQ;
       const double* w = xs.data() + nq + vw;
       for (int m = 0; m < 4; ++m) {
@@ -172,12 +183,6 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
       T *= k2;
       for (int r = 0; r < nv; ++r)
         J.row(nq + row[r]).template segment<4>(qQ) = d.row(r).template segment<3>(vw) * T;
-    } else {
-      // One rate, or rates in series (q = v): each coordinate its rate's.
-      for (int k = 0; k < LI::joint_type::nv; ++k) {
-        J(LI::q + k, nq + LI::v + k) = 1;
-        for (int r = 0; r < nv; ++r) J(nq + row[r], LI::q + k) = d(r, LI::v + k);
-      }
     }
   });
   if (dfdt) {
