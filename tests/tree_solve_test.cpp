@@ -136,8 +136,19 @@ TEST_CASE("tree_solve: a tree's runs name each node's descendants and ancestors 
     CHECK(nodes(Tree::above_start, Tree::above, k) == above[k]);
   }
   CHECK(Tree::above_start[8] - Tree::above_start[7] == 2);
+  // Rows solved in pairs: from the leaves k and k − 1 where k is k − 1's
+  // only child (3 of 2 alone: 7 is 5's, not 6's); from the root k and
+  // k + 1 where k is k + 1's parent (1, 2, 4, 8).
+  const std::array<bool, 11> leaves{false, false, false, true, false, false, false, false, false, false, false};
+  const std::array<bool, 11> root{false, true, true, false, true, false, false, false, true, false, false};
+  CHECK(Tree::pair_from_leaves == leaves);
+  CHECK(Tree::pair_from_root == root);
   // A chain is one run each way.
   using Chain = detail::tree_runs<chain_parents<16>>;
   CHECK(Chain::below.size() == 15);
   CHECK(Chain::above.size() == 15);
+  for (int k = 1; k <= 16; ++k) {
+    CHECK(Chain::pair_from_leaves[k] == (k >= 2));
+    CHECK(Chain::pair_from_root[k] == (k < 16));
+  }
 }

@@ -105,6 +105,25 @@ struct tree_runs {
     collect_runs<NN>(is_above, nullptr, r.data());
     return r;
   }();
+  /// Rows the AVX2 kernel solves as a pair: from the leaves, k and k − 1
+  /// where k is k − 1's only child (the nodes below k − 1 are k and those
+  /// below k); from the root, k and k + 1 where k is k + 1's parent (the
+  /// nodes above k + 1 are k and those above k). pair_from_leaves[k] and
+  /// pair_from_root[k] say so of the pair's first row, k.
+  static constexpr std::array<bool, NN> pair_from_leaves = [] {
+    std::array<bool, NN> r{};
+    for (int k = 2; k < NN; ++k) {
+      r[k] = true;
+      for (int x = 1; x < NN; ++x)
+        if (up[x][k - 1] != (x == k || up[x][k])) r[k] = false;
+    }
+    return r;
+  }();
+  static constexpr std::array<bool, NN> pair_from_root = [] {
+    std::array<bool, NN> r{};
+    for (int k = 1; k + 1 < NN; ++k) r[k] = parent[k + 1] == k;
+    return r;
+  }();
   /// Node k's runs below it (Below) or above it, as [first, last).
   template <bool Below>
   static constexpr std::pair<const node_run*, const node_run*> runs_of(int k) {
@@ -227,18 +246,69 @@ template <class Tree, int V, int ldx, bool FromLeaves>
   tree_solve_finish<V>(acc, inv[k], xk);
 }
 
+/// Rows a and b of the tile, b next to a on a's far side (from the leaves
+/// b = a − 1, from the root b = a + 1; Tree::pair_from_leaves[a] or
+/// pair_from_root[a]): both sums over the nodes of a's runs at once, each
+/// row of X they read loaded once for the two (eight registers of sums, one
+/// each); then a's row, and b's sum takes it.
+template <class Tree, int V, int ldx, bool FromLeaves>
+[[gnu::target("avx2,fma"), gnu::always_inline]] inline void tree_solve_pair_avx2(const double* C, int ldc,
+                                                                                const double* inv, double* X, int c0,
+                                                                                int a) {
+  const int b = FromLeaves ? a - 1 : a + 1;
+  __m256d sa[V], sb[V];
+  double *xa = X + (a - 1) * ldx + c0, *xb = X + (b - 1) * ldx + c0;
+  for (int v = 0; v < V; ++v) {
+    sa[v] = _mm256_loadu_pd(xa + 4 * v);
+    sb[v] = _mm256_loadu_pd(xb + 4 * v);
+  }
+  const int ms = run_stride<FromLeaves>(ldc);
+  for (auto [r, last] = Tree::template runs_of<FromLeaves>(a); r != last; ++r) {
+    const double *ma = run_factors<FromLeaves>(C, ldc, a, *r), *mb = run_factors<FromLeaves>(C, ldc, b, *r);
+    const double* x = X + (r->lo - 1) * ldx + c0;
+    for (int i = 0, n = r->hi - r->lo; i < n; ++i, ma += ms, mb += ms, x += ldx) {
+      const __m256d fa = _mm256_set1_pd(*ma), fb = _mm256_set1_pd(*mb);
+      for (int v = 0; v < V; ++v) {
+        const __m256d xv = _mm256_loadu_pd(x + 4 * v);
+        sa[v] = _mm256_fnmadd_pd(fa, xv, sa[v]);
+        sb[v] = _mm256_fnmadd_pd(fb, xv, sb[v]);
+      }
+    }
+  }
+  const __m256d da = _mm256_set1_pd(inv[a]), db = _mm256_set1_pd(inv[b]);
+  const __m256d fab = _mm256_set1_pd(*run_factors<FromLeaves>(C, ldc, b, node_run{a, a + 1}));
+  for (int v = 0; v < V; ++v) {
+    const __m256d ra = _mm256_mul_pd(sa[v], da);
+    _mm256_storeu_pd(xa + 4 * v, ra);
+    _mm256_storeu_pd(xb + 4 * v, _mm256_mul_pd(_mm256_fnmadd_pd(fab, ra, sb[v]), db));
+  }
+}
+
 /// The tile of X's columns c0 … c0 + 4·V (rows of ldx numbers), as
-/// tree_solve_block with each product fused.
+/// tree_solve_block with each product fused: rows in pairs where the tree
+/// lets them (all of a chain's), else one at a time.
 template <class Tree, int V, int ldx>
 [[gnu::target("avx2,fma")]] void tree_solve_tile_avx2(const double* C, int ldc, const double* inv, double* X, int c0) {
   constexpr int NN = Tree::NN;
-  for (int k = NN - 1; k >= 1; --k) tree_solve_row_avx2<Tree, V, ldx, true>(C, ldc, inv, X, c0, k);
-  for (int k = 1; k < NN; ++k) tree_solve_row_avx2<Tree, V, ldx, false>(C, ldc, inv, X, c0, k);
+  for (int k = NN - 1; k >= 1;)
+    if (Tree::pair_from_leaves[k]) {
+      tree_solve_pair_avx2<Tree, V, ldx, true>(C, ldc, inv, X, c0, k);
+      k -= 2;
+    } else {
+      tree_solve_row_avx2<Tree, V, ldx, true>(C, ldc, inv, X, c0, k--);
+    }
+  for (int k = 1; k < NN;)
+    if (Tree::pair_from_root[k]) {
+      tree_solve_pair_avx2<Tree, V, ldx, false>(C, ldc, inv, X, c0, k);
+      k += 2;
+    } else {
+      tree_solve_row_avx2<Tree, V, ldx, false>(C, ldc, inv, X, c0, k++);
+    }
 }
 
 /// All Row columns of X (rows of Row numbers, a multiple of four), in tiles
-/// of 16 columns (four registers, two sums: eight of AVX2's sixteen), the
-/// last tile the remainder.
+/// of 16 columns (a row's two sums or a pair's: eight of AVX2's sixteen
+/// registers), the last tile the remainder.
 template <class Tree, int Row>
 [[gnu::target("avx2,fma")]] void tree_solve_avx2(const double* C, int ldc, const double* inv, double* X) {
   static_assert(Row % 4 == 0);
