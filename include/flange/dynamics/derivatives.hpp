@@ -1010,16 +1010,16 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
         if constexpr (loaded) e += s[j].dot(gw);
         out(n - 1, rate[j]) = e;
       }
-    }
-    for (int j = parent[n]; !stacked && j != 0; j = parent[j]) {
-      // Within a ball, node j's column turns with n's rate too: row j,
-      // column n as for an ancestor.
-      if (balls && nodes::table.group[j] == nodes::table.group[n]) {
-        double e = y[j].dot(psi[n]) - inner(z[j], u[n].a);
-        if constexpr (loaded) e += s[n].dot(force_cross(s[j], W[j]));
-        out(j - 1, i) = e;
-      } else {
-        out(j - 1, i) = -s[j].dot(Gq);
+      for (int j = parent[n]; j != 0; j = parent[j]) {
+        // Within a ball, node j's column turns with n's rate too: row j,
+        // column n as for an ancestor.
+        if (balls && nodes::table.group[j] == nodes::table.group[n]) {
+          double e = y[j].dot(psi[n]) - inner(z[j], u[n].a);
+          if constexpr (loaded) e += s[n].dot(force_cross(s[j], W[j]));
+          out(j - 1, i) = e;
+        } else {
+          out(j - 1, i) = -s[j].dot(Gq);
+        }
       }
     }
     Y[parent[n]] += y[n] * b[n - 1] + Y[n];
