@@ -12,6 +12,7 @@
 #include <flange/math/tree_solve.hpp>
 
 #include "../../tests/tree_parents.hpp"
+#include "median_ns.hpp"
 
 #include <algorithm>
 #include <array>
@@ -23,18 +24,6 @@
 namespace {
 
 using flange::test::chain_parents;
-
-template <class F>
-double median_ns(F&& f) {
-  std::vector<double> t;
-  for (int r = 0; r < 15; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int i = 0; i < 2000; ++i) f();
-    t.push_back(std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count() / 2000);
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
 
 template <int N>
 void run() {
