@@ -30,8 +30,10 @@
 // reads the state (τ(t, x), a PD law) in every direction. v̇ itself comes
 // from the same passes: τ⁰ at v̇ = 0, v̇ = M⁻¹·(Q − τ⁰), then the
 // accelerations corrected. One forward pass over the links, one backward pass that fills
-// the pairs of a link and its ancestors (O(N²) on a chain), and one Cholesky
-// solve of M with 2N + 1 right-hand sides (O(N³) on a chain).
+// the pairs of a link and its ancestors (O(N²) on a chain), and one solve of
+// M with 2N + 1 right-hand sides: by M's Cholesky factor (O(N³) on a chain),
+// or on a chain of 24 nodes or more (12 in the plane) by its articulated-body
+// factor (math/chain_solve.hpp, O(N²)).
 //
 // The force elements' loads (torques, springs, dampers, world forces,
 // contacts) are computed by their own code in dual numbers, turned into
@@ -87,6 +89,7 @@
 #include "flange/dynamics/ldlt.hpp"
 #include "flange/dynamics/links.hpp"
 #include "flange/math/dual.hpp"
+#include "flange/math/chain_solve.hpp"
 #include "flange/math/quaternion.hpp"
 #include "flange/math/tree_solve.hpp"
 
@@ -237,6 +240,14 @@ struct space {
     T(2, 1) += h.a[0];
     return {T, 2 * h.l};
   }
+  /// A body's inertia as the 6 × 6 matrix [I h̃; h̃ᵀ m·1] that I·x applies.
+  static Eigen::Matrix<double, 6, 6> matrix_of(const world_inertia<space>& b) {
+    Eigen::Matrix<double, 6, 6> A;
+    Mat3d H;
+    H << 0, -b.h[2], b.h[1], b.h[2], 0, -b.h[0], -b.h[1], b.h[0], 0;
+    A << b.I, H, H.transpose(), b.m * Mat3d::Identity();
+    return A;
+  }
 };
 
 /// The passes' world in the plane normal to axis K of a planar scene
@@ -269,6 +280,12 @@ struct plane {
   FLANGE_INLINE static velocity_coupling<plane> coupling_of(const world_inertia<plane>& I, const spatial<plane>& v,
                                                             const spatial<plane>& h) {
     return {-2 * I.h.dot(v.l), 2 * h.l};
+  }
+  /// A body's inertia as the 3 × 3 matrix that I·x applies.
+  static Eigen::Matrix3d matrix_of(const world_inertia<plane>& b) {
+    Eigen::Matrix3d A;
+    A << b.I, -b.h[1], b.h[0], -b.h[1], b.m, 0, b.h[0], 0, b.m;
+    return A;
   }
 };
 
@@ -391,7 +408,24 @@ struct derivative_nodes {
     }
     return r;
   }();
+  /// Whether every node's parent is the node before it.
+  static constexpr bool chain = [] {
+    for (int n = 1; n < NN; ++n)
+      if (table.parent[n] != n - 1) return false;
+    return true;
+  }();
 };
+
+/// Whether acceleration_derivatives solves with M's articulated-body factor
+/// (math/chain_solve.hpp) rather than with the triangular solves of its
+/// Cholesky factor (math/tree_solve.hpp): on a chain of at least 4·C nodes
+/// (C numbers a spatial vector: 24 nodes in space, 12 in the plane), where
+/// its 4·C multiply-adds a node and column are fewer than their N.
+template <class S>
+constexpr bool articulated_solve() {
+  constexpr int C = std::is_same_v<geometry_t<S>, space> ? 6 : 3;
+  return derivative_nodes<S>::chain && S::n_v >= 4 * C;
+}
 
 /// The nodes' tree as math/tree_solve.hpp reads it.
 template <class S>
@@ -559,7 +593,9 @@ using derivative_rows = Eigen::Matrix<double, S::n_v, tree_solve_row(2 * S::n_v 
 /// quaternion's four), then v, then t; row r is rate derivative_row_rate<S>[r].
 /// Returns the pivot of M that failed (index ≥ 0: out and vdot are not
 /// written; index is its rate), as the mass-matrix solve reports it.
-template <class S>
+/// Articulated: M⁻¹ by its articulated-body factor (math/chain_solve.hpp, a
+/// chain's), else by its Cholesky factor; the two agree to round-off.
+template <class S, bool Articulated = articulated_solve<S>()>
 pivot_report<double> acceleration_derivatives(const S& scene, double t, const double* q, const double* v,
                                               derivative_rows<S>& out, double* vdot = nullptr) {
   static_assert(analytic_derivatives<S>());
@@ -668,11 +704,8 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   Eigen::Matrix<double, N, 1> b;  // Q − τ⁰, then v̇, by node
   std::array<spatial<G>, NN> y;   // I_n·s_n
   std::array<typename G::ang, NN> z;  // the angular part of B_nᵀ·s_n
-  constexpr bool chain = [] {
-    for (int n = 1; n < NN; ++n)
-      if (nodes::table.parent[n] != n - 1) return false;
-    return true;
-  }();
+  constexpr bool chain = nodes::chain;
+  static_assert(chain || !Articulated, "the articulated-body factor is a chain's");
   if constexpr (!chain) {
     out.setZero();
   } else if constexpr (constexpr int padding = tree_solve_row(2 * N + 1) - (2 * N + 1); padding > 0) {
@@ -702,22 +735,27 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
         uc[c][n] = un[c];
       }
     }
+  // The bodies' own inertias, for M's articulated-body factor (the pass
+  // below sums them into the composites), which needs M's diagonal alone.
+  std::conditional_t<Articulated, std::array<world_inertia<G>, NN>, std::array<int, 0>> own;
+  if constexpr (Articulated) own = Ic;
   for (int n = NN - 1; n >= 1; --n) {
     const int i = rate[n];
     y[n] = Ic[n] * s[n];
     z[n] = Bc[n].transposed_times(s[n]);
     b[n - 1] = -s[n].dot(F[n]);
     const spatial<G> Gv = Bc[n] * s[n] + Ic[n] * uv(n) * 2;
+    if constexpr (Articulated) M(n - 1, n - 1) = y[n].dot(s[n]);
     if constexpr (stacked) {
       const auto yn = numbers(y[n]), zn = numbers(spatial<G>{z[n], G::lin::Zero()}), gv = numbers(Gv);
       for (int j = 1; j <= n; ++j) {
         double m = 0, e = 0;
         for (int c = 0; c < C; ++c) {
-          m += yn[c] * sc[c][j];
+          if constexpr (!Articulated) m += yn[c] * sc[c][j];
           e += 2 * yn[c] * uc[c][j];
         }
         for (int c = 0; c < CA; ++c) e += zn[c] * sc[c][j];
-        M(n - 1, j - 1) = m;
+        if constexpr (!Articulated) M(n - 1, j - 1) = m;
         out(n - 1, N + j - 1) = e;
       }
       for (int j = 1; j < n; ++j) {
@@ -727,7 +765,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
       }
     } else {
       for (int j = n; j != 0; j = parent[j]) {
-        M(n - 1, j - 1) = y[n].dot(s[j]);
+        if constexpr (!Articulated) M(n - 1, j - 1) = y[n].dot(s[j]);
         out(n - 1, N + rate[j]) = inner(z[n], s[j].a) + 2 * y[n].dot(uv(j));
       }
       for (int j = parent[n]; j != 0; j = parent[j]) out(j - 1, N + i) = s[j].dot(Gv);
@@ -927,12 +965,26 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
     }
   }
 
-  // M = Cᵀ·C (Featherstone's LTL factorization, leaves first: C has the
-  // tree's zeros, where a root-first factor would join siblings). A pivot at
-  // or below pivot_tolerance of its diagonal entry stops it (a joint that
-  // moves nothing with inertia, or whose motion repeats others').
+  // M's factor: on a long chain (Articulated) its articulated-body factor
+  // (math/chain_solve.hpp, from the bodies' own inertias and the columns:
+  // of M only its diagonal is formed); else M = Cᵀ·C (Featherstone's LTL
+  // factorization, leaves first: C has the tree's zeros, where a root-first
+  // factor would join siblings). Either way a pivot at or below
+  // pivot_tolerance of its diagonal entry stops it (a joint that moves
+  // nothing with inertia, or whose motion repeats others').
   constexpr double tol = pivot_tolerance<N, double>();
-  if constexpr (chain) {
+  std::conditional_t<Articulated, chain_factor<N, C>, std::array<int, 0>> chain_M;
+  std::array<double, NN> inv;  // 1 / C(k − 1, k − 1), the Cholesky factor's
+  if constexpr (Articulated) {
+    std::array<std::array<double, C>, N> cols;
+    std::array<double, N> diag;
+    for (int k = 0; k < N; ++k) {
+      cols[k] = numbers(s[k + 1]);
+      diag[k] = M(k, k);
+    }
+    if (!chain_M.factor(cols, [&](int k) { return G::matrix_of(own[k + 1]); }, diag.data(), tol)) [[unlikely]]
+      return {rate[chain_M.failed + 1], chain_M.failed_d, diag[chain_M.failed]};
+  } else if constexpr (chain) {
     // Every node above k: dense loops the compiler vectorizes.
     std::array<double, N> c, diag;
     for (int k = 0; k < N; ++k) diag[k] = M(k, k);
@@ -961,11 +1013,14 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   // Both triangular solves (math/tree_solve.hpp): M's factor with the
   // tree's zeros, tree giving each node's descendants and ancestors.
   using tree = node_runs<S>;
-  std::array<double, NN> inv;
-  for (int k = 1; k < NN; ++k) inv[k] = 1 / M(k - 1, k - 1);
   // v̇ = M⁻¹·(Q − τ⁰); then each node's acceleration changes by δa_n = δa_P +
   // s_n·v̇_n, and ψ_n = s_n × a_V − u_n × v_V follows (V: vparent).
-  tree_solve_block<tree, 1>(M.data(), N, inv.data(), b.data(), 1, 0);
+  if constexpr (Articulated) {
+    chain_solve_block<N, C, 1>(chain_M, b.data(), 1, 0);
+  } else {
+    for (int k = 1; k < NN; ++k) inv[k] = 1 / M(k - 1, k - 1);
+    tree_solve_block<tree, 1>(M.data(), N, inv.data(), b.data(), 1, 0);
+  }
   if (vdot)
     for (int n = 1; n < NN; ++n) vdot[rate[n]] = b[n - 1];
   std::array<spatial<G>, NN> da;
@@ -1048,7 +1103,8 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
       }
     }
   }
-  tree_solve<tree, 2 * N + 1>(M.data(), N, inv.data(), out.data());
+  if constexpr (Articulated) chain_solve<N, C, 2 * N + 1, tree_solve_row(2 * N + 1)>(chain_M, out.data());
+  else tree_solve<tree, 2 * N + 1>(M.data(), N, inv.data(), out.data());
   return {};
 }
 
