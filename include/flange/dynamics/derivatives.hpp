@@ -1010,8 +1010,10 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
         for (int j = i; j != 0; j = parent[j]) M(i - 1, j - 1) -= M(k - 1, i - 1) * M(k - 1, j - 1);
     }
   }
-  // Both triangular solves (math/tree_solve.hpp): M's factor with the
-  // tree's zeros, tree giving each node's descendants and ancestors.
+  // The solves: the articulated-body factor's two sweeps
+  // (math/chain_solve.hpp), or both triangular solves of the Cholesky
+  // factor with the tree's zeros (math/tree_solve.hpp, tree giving each
+  // node's descendants and ancestors).
   using tree = node_runs<S>;
   // v̇ = M⁻¹·(Q − τ⁰); then each node's acceleration changes by δa_n = δa_P +
   // s_n·v̇_n, and ψ_n = s_n × a_V − u_n × v_V follows (V: vparent).

@@ -21,11 +21,11 @@
 // stops that one.
 //
 // Two kernels, the same sums: chain_solve_blocks, Eigen's rows of up to
-// eight columns (SSE2 on x86-64 unless the build asks for more), and on x86-64 where the processor has AVX2 and FMA
-// (detail/cpu.hpp) chain_solve_avx2, eight columns at a time in registers
-// with each multiply-add fused: a result differs from the other's in its
-// last bits. chain_solve picks. Define FLANGE_NO_AVX2 to keep the first
-// everywhere.
+// eight columns (SSE2 on x86-64 unless the build asks for more), and on
+// x86-64 where the processor has AVX2 and FMA (detail/cpu.hpp)
+// chain_solve_avx2, eight columns at a time in registers with each
+// multiply-add fused: a result differs from the other's in its last bits.
+// chain_solve picks. Define FLANGE_NO_AVX2 to keep the first everywhere.
 #pragma once
 #include <array>
 
@@ -45,6 +45,7 @@ namespace flange::detail {
 /// (1 … N) at index k − 1.
 template <int N, int C>
 struct chain_factor {
+  static_assert(N >= 1 && C >= 2);
   alignas(32) std::array<std::array<double, C>, N> s, U, Ud;  ///< s_k, U_k, U_k / D_k
   std::array<double, N> inv{};  ///< 1 / D_k
   /// s_kᵀ·U_{k+1} and (U_k / D_k)ᵀ·s_{k−1} (0 past the ends): what the
