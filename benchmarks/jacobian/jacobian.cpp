@@ -13,12 +13,14 @@
 // time, is there for the named scenes and, with -DFLANGE_SCALE_FULL=ON, for
 // the chains up to 16 joints and three floating-base trees; where it is,
 // jacobian() is first checked against it (1e-12 of the largest entry) and the
-// program fails if they differ. Scenes: chains.cpp, scenes.cpp, trees.cpp.
+// program fails if they differ. Scenes: chains.cpp, scenes.cpp, trees.cpp,
+// large_trees.cpp.
 #include "jacobian.hpp"
 
 int main() {
   jacobian_bench::chains();
   jacobian_bench::named_scenes();
   jacobian_bench::trees();
+  jacobian_bench::large_trees();
   return jacobian_bench::failures == 0 ? 0 : 1;
 }

@@ -100,5 +100,6 @@ void measure(const char* name, int n, const S& s, State x) {
 void chains();
 void named_scenes();
 void trees();
+void large_trees();
 
 }  // namespace jacobian_bench

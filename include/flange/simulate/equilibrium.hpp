@@ -68,7 +68,7 @@ Vec equilibrium_step(const S& scene, double t, const State& x, const Vec& f) {
     cod.setThreshold(1e-10);
     return Tx * cod.solve(f);
   } else {
-    Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, n, n>> cod(J);
+    Eigen::CompleteOrthogonalDecomposition<jacobian_matrix<S>> cod(J);
     cod.setThreshold(1e-10);
     return cod.solve(f);
   }

@@ -19,7 +19,9 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
 #include "flange/dynamics/derivatives.hpp"
@@ -29,8 +31,41 @@
 
 namespace flange {
 
+namespace detail {
+/// Whether a scene's n_state × n_state Jacobian fits Eigen's fixed-size
+/// matrices, which live on the stack up to EIGEN_STACK_ALLOCATION_LIMIT
+/// (128 KB unless the build sets it, 0 for no limit): 128 states.
 template <class S>
-using jacobian_matrix = Eigen::Matrix<double, S::n_state, S::n_state>;
+constexpr bool jacobian_on_stack() {
+  return EIGEN_STACK_ALLOCATION_LIMIT == 0 ||
+         std::size_t(S::n_state) * std::size_t(S::n_state) * sizeof(double) <= std::size_t(EIGEN_STACK_ALLOCATION_LIMIT);
+}
+}  // namespace detail
+
+/// ∂f/∂x's matrix: of fixed size on the stack, or for a scene of more
+/// states than Eigen keeps there (a 64-joint floating-base tree: 141) sized
+/// n_state × n_state at run time on the heap. jacobian(scene, t, x, J)
+/// writes into one made before (make_jacobian_matrix), allocating nothing.
+template <class S>
+using jacobian_matrix = std::conditional_t<detail::jacobian_on_stack<S>(), Eigen::Matrix<double, S::n_state, S::n_state>,
+                                           Eigen::MatrixXd>;
+
+/// An n_state × n_state jacobian_matrix<S>, its entries not set.
+template <class S>
+jacobian_matrix<S> make_jacobian_matrix() {
+  if constexpr (detail::jacobian_on_stack<S>()) return {};
+  else return jacobian_matrix<S>(S::n_state, S::n_state);
+}
+
+namespace detail {
+/// The matrix into(J) writes, made here: what the by-value forms return.
+template <class S, class Into>
+FLANGE_INLINE jacobian_matrix<S> made_by(Into&& into) {
+  auto J = make_jacobian_matrix<S>();
+  into(J);
+  return J;
+}
+}  // namespace detail
 
 /// The most directions one dual-number evaluation carries. A scene with more
 /// (n_state + 1 of them) is differentiated in passes of equal width, each
@@ -76,13 +111,13 @@ FLANGE_INLINE void lane_columns(int first, F&& f) {
 }
 }  // namespace detail
 
-/// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given, by dual numbers.
+/// ∂f/∂x at (t, x) into J, and ∂f/∂t into *dfdt when given, by dual numbers.
 template <class S, class State>
-jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+void jacobian_dual(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
+                   Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
   S::require_state_size(x);
   constexpr int n = S::n_state;
   std::array<dual<double, detail::jacobian_width(n + 1)>, n> fd;
-  jacobian_matrix<S> J;
   detail::dual_passes<n>(x, t, [&](const auto& xd, const auto& td, int first) FLANGE_INLINE_LAMBDA {
     scene(xd, fd, td);
     detail::lane_columns<n>(first, [&](int l, int c) FLANGE_INLINE_LAMBDA {
@@ -91,7 +126,12 @@ jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen
         else if (dfdt) (*dfdt)(i) = fd[i].d[l];
     });
   });
-  return J;
+}
+
+/// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given, by dual numbers.
+template <class S, class State>
+jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+  return detail::made_by<S>([&](jacobian_matrix<S>& J) { jacobian_dual(scene, t, x, J, dfdt); });
 }
 
 namespace detail {
@@ -110,11 +150,11 @@ constexpr bool jacobian_takes_analytic() {
   }
 }
 
-/// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given, from the analytic
-/// derivatives (dynamics/derivatives.hpp), for a scene they apply to.
+/// ∂f/∂x at (t, x) into J, and ∂f/∂t into *dfdt when given, from the
+/// analytic derivatives (dynamics/derivatives.hpp), for a scene they apply to.
 template <class S, class State>
-jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
-                                     Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+void jacobian_analytic(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
+                       Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
   static_assert(analytic_derivatives<S>());
   S::require_state_size(x);
   constexpr int nq = S::n_q, nv = S::n_v;
@@ -130,7 +170,6 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
     scene(xs, f, t);
     detail::singular_mass_matrix<S>(p, t, xs.data(), xs.data() + nq);
   }
-  jacobian_matrix<S> J;
   J.template topRows<nq>().setZero();
   // v̇'s rows: ∂/∂v, and ∂/∂q where a coordinate is its rate's (a joint of
   // one rate, rates in series, a ball's translations). d's rows are J's
@@ -189,7 +228,13 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
     dfdt->template head<nq>().setZero();
     for (int r = 0; r < nv; ++r) (*dfdt)(nq + row[r]) = d(r, 2 * nv);
   }
-  return J;
+}
+
+/// The same, returned.
+template <class S, class State>
+jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
+                                     Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+  return made_by<S>([&](jacobian_matrix<S>& J) { jacobian_analytic(scene, t, x, J, dfdt); });
 }
 
 /// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given, for a scene with loops,
@@ -303,33 +348,37 @@ bool jacobian_loops(const S& scene, double t, const State& x, jacobian_matrix<S>
 }
 }  // namespace detail
 
-/// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given: analytic where
+/// ∂f/∂x at (t, x) into J, and ∂f/∂t into *dfdt when given: analytic where
 /// dynamics/derivatives.hpp covers the scene (jacobian_takes_analytic); for a
 /// scene with loops by implicit differentiation where the loop solve is exact
 /// (detail::jacobian_loops); else by dual numbers.
 template <class S, class State>
-jacobian_matrix<S> jacobian(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+void jacobian(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
+              Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
   if constexpr (detail::jacobian_takes_analytic<S>()) {
-    return detail::jacobian_analytic(scene, t, x, dfdt);
+    detail::jacobian_analytic(scene, t, x, J, dfdt);
   } else if constexpr (detail::has_loops<S>) {
-    jacobian_matrix<S> J;
-    if (detail::jacobian_loops(scene, t, x, J, dfdt)) return J;
-    return jacobian_dual(scene, t, x, dfdt);
+    if (!detail::jacobian_loops(scene, t, x, J, dfdt)) jacobian_dual(scene, t, x, J, dfdt);
   } else {
-    return jacobian_dual(scene, t, x, dfdt);
+    jacobian_dual(scene, t, x, J, dfdt);
   }
+}
+
+/// The same, returned.
+template <class S, class State>
+jacobian_matrix<S> jacobian(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+  return detail::made_by<S>([&](jacobian_matrix<S>& J) { jacobian(scene, t, x, J, dfdt); });
 }
 
 /// ∂f/∂x (and ∂f/∂t into *dfdt) by central differences, step
 /// h = ε^(1/3)·max(1, |x_k|), which balances truncation (h²) against rounding
 /// (ε/h): about 1e-10 relative error.
 template <class S, class State>
-jacobian_matrix<S> jacobian_finite_difference(const S& scene, double t, const State& x,
-                                              Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+void jacobian_finite_difference(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
+                                Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
   S::require_state_size(x);
   constexpr int n = S::n_state;
   const double cbrt_eps = std::cbrt(std::numeric_limits<double>::epsilon());
-  jacobian_matrix<S> J;
   std::array<double, n> xp, xm, fp, fm;
   for (int k = 0; k <= n; ++k) {
     if (k == n && !dfdt) break;
@@ -352,7 +401,13 @@ jacobian_matrix<S> jacobian_finite_difference(const S& scene, double t, const St
       else (*dfdt)(i) = v;
     }
   }
-  return J;
+}
+
+/// The same, returned.
+template <class S, class State>
+jacobian_matrix<S> jacobian_finite_difference(const S& scene, double t, const State& x,
+                                              Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+  return detail::made_by<S>([&](jacobian_matrix<S>& J) { jacobian_finite_difference(scene, t, x, J, dfdt); });
 }
 
 }  // namespace flange

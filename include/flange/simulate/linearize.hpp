@@ -33,7 +33,7 @@ namespace flange {
 /// (a joint's name, with its rate's index for a multi-axis joint).
 template <class S, int NU>
 struct linearization {
-  Eigen::Matrix<double, S::n_state, S::n_state> A;
+  jacobian_matrix<S> A = make_jacobian_matrix<S>();
   Eigen::Matrix<double, S::n_state, NU> B;
   std::array<std::string, NU> inputs;
 };
@@ -88,7 +88,7 @@ linearization<S, detail::n_inputs<S, Joints...>()> linearize(const S& scene, dou
   S::require_state_size(x);
   constexpr int NU = detail::n_inputs<S, Joints...>();
   linearization<S, NU> r;
-  r.A = jacobian(scene, t, x);
+  jacobian(scene, t, x, r.A);
   r.B.setZero();
   if constexpr (NU > 0) {
     const double* xs = &x[0];

@@ -97,14 +97,12 @@ class rosenbrock4_stepping {
       State a = x_;
       std::copy_n(xs.begin(), n, a.begin());
       Eigen::Matrix<double, n, 1> ft;
-      const auto Je = [&] {
-        if constexpr (std::is_same_v<Method, jacobian_method::finite_difference>)
-          return jacobian_finite_difference(*scene_, xs[n], a, &ft);
-        else
-          return jacobian(*scene_, xs[n], a, &ft);
-      }();
+      if constexpr (std::is_same_v<Method, jacobian_method::finite_difference>)
+        jacobian_finite_difference(*scene_, xs[n], a, J_, &ft);
+      else
+        jacobian(*scene_, xs[n], a, J_, &ft);
       for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) J(i, j) = Je(i, j);
+        for (int j = 0; j < n; ++j) J(i, j) = J_(i, j);
         J(i, n) = ft(i);  // ∂f/∂τ
       }
       for (int j = 0; j <= n; ++j) J(n, j) = 0;  // τ' = 1 depends on nothing
@@ -146,6 +144,7 @@ class rosenbrock4_stepping {
   const S* scene_;
   mutable dense_stepper st_;  // its calc_state is not const
   vector xs_;
+  jacobian_matrix<S> J_ = make_jacobian_matrix<S>();  // made once: a large scene's is on the heap
   State x_{}, prev_{};
   double tiny_ = 0;
   stiff_stats stats_;
