@@ -1005,9 +1005,20 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
         return {rate[k], M(k - 1, k - 1), diag[k - 1]};
       const double d = std::sqrt(M(k - 1, k - 1));
       M(k - 1, k - 1) = d;
-      for (int i = parent[k]; i != 0; i = parent[i]) M(k - 1, i - 1) /= d;
-      for (int i = parent[k]; i != 0; i = parent[i])
-        for (int j = i; j != 0; j = parent[j]) M(i - 1, j - 1) -= M(k - 1, i - 1) * M(k - 1, j - 1);
+      // k's ancestors, nearest first, and row k's entries for them: each
+      // pair's update then reads two lists, no walk up the tree a term.
+      std::array<int, NN> up;
+      std::array<double, NN> c;
+      int depth = 0;
+      for (int i = parent[k]; i != 0; i = parent[i], ++depth) {
+        up[depth] = i - 1;
+        c[depth] = M(k - 1, i - 1) /= d;
+      }
+      for (int a = 0; a < depth; ++a) {
+        double* row = &M(up[a], 0);
+        const double ca = c[a];
+        for (int b = a; b < depth; ++b) row[up[b] * N] -= ca * c[b];
+      }
     }
   }
   // The solves: the articulated-body factor's two sweeps

@@ -170,7 +170,17 @@ void jacobian_analytic(const S& scene, double t, const State& x, jacobian_matrix
     scene(xs, f, t);
     detail::singular_mass_matrix<S>(p, t, xs.data(), xs.data() + nq);
   }
-  J.template topRows<nq>().setZero();
+  // J's entries by their place in its (column-major) numbers, n_state a
+  // column whether its size is fixed or set at run time.
+  double* const Jn = J.data();
+  auto at = [Jn](int r, int c) FLANGE_INLINE_LAMBDA -> double& { return Jn[r + std::size_t(c) * S::n_state]; };
+  // q̇'s rows: zero but for the entries below; in a matrix sized at run
+  // time a column's nq numbers at a time (Eigen's block of it goes a
+  // number pair at a time: 40k instructions on a 141-state tree).
+  if constexpr (detail::jacobian_on_stack<S>())
+    J.template topRows<nq>().setZero();
+  else
+    for (int c = 0; c < S::n_state; ++c) std::fill_n(&at(0, c), nq, 0.0);
   // v̇'s rows: ∂/∂v, and ∂/∂q where a coordinate is its rate's (a joint of
   // one rate, rates in series, a ball's translations). d's rows are J's
   // columns: copied four rows at a time, so that J's columns (1 KB apart at
@@ -182,15 +192,15 @@ void jacobian_analytic(const S& scene, double t, const State& x, jacobian_matrix
     constexpr int w = decltype(width)::value;
     for (int c = 0; c < nv; ++c) {
       if (coordinate[c] >= 0)
-        for (int k = 0; k < w; ++k) J(nq + row[r0 + k], coordinate[c]) = d(r0 + k, c);
-      for (int k = 0; k < w; ++k) J(nq + row[r0 + k], nq + c) = d(r0 + k, nv + c);
+        for (int k = 0; k < w; ++k) at(nq + row[r0 + k], coordinate[c]) = d(r0 + k, c);
+      for (int k = 0; k < w; ++k) at(nq + row[r0 + k], nq + c) = d(r0 + k, nv + c);
     }
   };
   constexpr int tile = 4;
   for (int r0 = 0; r0 + tile <= nv; r0 += tile) copy_rows(r0, std::integral_constant<int, tile>{});
   if constexpr (nv % tile != 0) copy_rows(nv - nv % tile, std::integral_constant<int, nv % tile>{});
   for (int c = 0; c < nv; ++c)
-    if (coordinate[c] >= 0) J(coordinate[c], nq + c) = 1;
+    if (coordinate[c] >= 0) at(coordinate[c], nq + c) = 1;
   // A ball's quaternion Q = (x, y, z, w): q̇ = ½·Q ⊗ (ω, 0) (linear in Q and
   // in ω), and ∂v̇/∂Q through the turn δ (link coordinates) that a change of
   // Q makes, δ = 2·vec(Q* ⊗ dQ)/|Q|² (R is homogeneous in Q: a change along
