@@ -307,14 +307,18 @@ template <class Tree, int V, int ldx>
 }
 
 /// All Row columns of X (rows of Row numbers, a multiple of four), in tiles
-/// of 16 columns (a row's two sums or a pair's: eight of AVX2's sixteen
-/// registers), the last tile the remainder.
+/// of 24 columns (a row's two sums or a pair's: twelve of AVX2's sixteen
+/// registers, the broadcast factors and a row's load the rest), the last
+/// tile the remainder. Each tile walks the whole tree: against tiles of 16,
+/// the 16-link chain's jacobian() 4.67 → 4.48 µs, a floating tree of 64 leg
+/// joints 42.4 → 40.6 µs (medians of five runs in turns); every column's
+/// sums are the same either way.
 template <class Tree, int Row>
 [[gnu::target("avx2,fma")]] void tree_solve_avx2(const double* C, int ldc, const double* inv, double* X) {
   static_assert(Row % 4 == 0);
-  constexpr int full = Row / 16, rest = Row % 16;
-  for (int t = 0; t < full; ++t) tree_solve_tile_avx2<Tree, 4, Row>(C, ldc, inv, X, 16 * t);
-  if constexpr (rest > 0) tree_solve_tile_avx2<Tree, rest / 4, Row>(C, ldc, inv, X, 16 * full);
+  constexpr int tile = 24, full = Row / tile, rest = Row % tile;
+  for (int t = 0; t < full; ++t) tree_solve_tile_avx2<Tree, tile / 4, Row>(C, ldc, inv, X, tile * t);
+  if constexpr (rest > 0) tree_solve_tile_avx2<Tree, rest / 4, Row>(C, ldc, inv, X, tile * full);
 }
 #endif
 
