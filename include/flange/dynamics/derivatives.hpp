@@ -33,7 +33,8 @@
 // the pairs of a link and its ancestors (O(N²) on a chain), and one solve of
 // M with 2N + 1 right-hand sides: by M's Cholesky factor (O(N³) on a chain),
 // or on a chain of 24 nodes or more (12 in the plane) by its articulated-body
-// factor (math/chain_solve.hpp, O(N²)).
+// factor (math/chain_solve.hpp, O(N²)). A pivot of either factor is tested
+// against the inertia its node's composite has about the fixed point.
 //
 // The force elements' loads (torques, springs, dampers, world forces,
 // contacts) are computed by their own code in dual numbers, turned into
@@ -91,6 +92,7 @@
 #include "flange/math/dual.hpp"
 #include "flange/math/chain_solve.hpp"
 #include "flange/math/quaternion.hpp"
+#include "flange/math/small_matrix.hpp"
 #include "flange/math/tree_solve.hpp"
 
 namespace flange::detail {
@@ -120,11 +122,24 @@ FLANGE_INLINE Vec3d minus(const Vec3d& x, const Vec3d& y) { return {x[0] - y[0],
 FLANGE_INLINE Vec2d minus(const Vec2d& x, const Vec2d& y) { return {x[0] - y[0], x[1] - y[1]}; }
 FLANGE_INLINE double minus(double x, double y) { return x - y; }
 /// R·a for an angular quantity: about K in the plane, which R leaves alone.
-FLANGE_INLINE Vec3d turn(const Mat3d& R, const Vec3d& a) { return R * a; }
+FLANGE_INLINE Vec3d turn(const Mat3d& R, const Vec3d& a) { return small::mul(R, a); }
 FLANGE_INLINE double turn(const Mat2d&, double a) { return a; }
-/// Tᵀ·a.
-FLANGE_INLINE Vec3d transpose_times(const Mat3d& T, const Vec3d& a) { return T.transpose() * a; }
+/// R·x for a linear quantity, and R·Qᵀ for two rotations.
+FLANGE_INLINE Vec3d rotate(const Mat3d& R, const Vec3d& x) { return small::mul(R, x); }
+FLANGE_INLINE Vec2d rotate(const Mat2d& R, const Vec2d& x) { return R * x; }
+FLANGE_INLINE Mat3d rotate_nt(const Mat3d& R, const Mat3d& Q) { return small::mul_nt(R, Q); }
+FLANGE_INLINE Mat2d rotate_nt(const Mat2d& R, const Mat2d& Q) { return R * Q.transpose(); }
+/// T·a and Tᵀ·a for a moment T (in the plane, its entry about K).
+FLANGE_INLINE Vec3d times(const Mat3d& T, const Vec3d& a) { return small::mul(T, a); }
+FLANGE_INLINE double times(double T, double a) { return T * a; }
+FLANGE_INLINE Vec3d transpose_times(const Mat3d& T, const Vec3d& a) {
+  return {T(0, 0) * a[0] + T(1, 0) * a[1] + T(2, 0) * a[2], T(0, 1) * a[0] + T(1, 1) * a[1] + T(2, 1) * a[2],
+          T(0, 2) * a[0] + T(1, 2) * a[1] + T(2, 2) * a[2]};
+}
 FLANGE_INLINE double transpose_times(double T, double a) { return T * a; }
+/// A moment's trace (in the plane, its entry about K).
+FLANGE_INLINE double trace_of(const Mat3d& T) { return T(0, 0) + T(1, 1) + T(2, 2); }
+FLANGE_INLINE double trace_of(double T) { return T; }
 
 /// A spatial vector at the passes' fixed point (link 1's origin), world coordinates: motion
 /// (angular a, linear l) or force (torque a, force l), in 3-D (G = space)
@@ -165,7 +180,7 @@ struct world_inertia {
   typename G::moment I;
   /// I·x: the momentum of motion x.
   FLANGE_INLINE spatial<G> operator*(const spatial<G>& x) const {
-    return {I * x.a + cross(h, x.l), m * x.l - cross(h, x.a)};
+    return {plus(times(I, x.a), cross(h, x.l)), minus(x.l * m, cross(h, x.a))};
   }
   FLANGE_INLINE world_inertia& operator+=(const world_inertia& o) {
     m += o.m;
@@ -191,7 +206,7 @@ struct velocity_coupling {
     return *this;
   }
   /// B·w.
-  FLANGE_INLINE spatial<G> operator*(const spatial<G>& w) const { return {T * w.a, cross(k, w.a)}; }
+  FLANGE_INLINE spatial<G> operator*(const spatial<G>& w) const { return {times(T, w.a), cross(k, w.a)}; }
   /// The angular part of Bᵀ·s (its linear part is zero).
   FLANGE_INLINE typename G::ang transposed_times(const spatial<G>& s) const {
     return plus(transpose_times(T, s.a), cross(s.l, k));
@@ -212,33 +227,48 @@ struct space {
     return dense_rotation<double>(e);
   }
   /// A link's inertia (m, h, I in link coordinates about the link origin) at
-  /// the link's world pose (R: link → world, r: its origin).
+  /// the link's world pose (R: link → world, r: its origin): R·I·Rᵀ, shifted
+  /// to the fixed point by the parallel-axis terms of a body with first
+  /// moment R·h, I − g·rᵀ − r·gᵀ + 2·(r·g)·1 with g = m·r/2 + R·h; written out
+  /// on the upper triangle (the result is symmetric): 45 products for the
+  /// turn against Eigen's 54.
   FLANGE_INLINE static world_inertia<space> to_world(const rigid_inertia<double>& b, const Mat3d& R, const Vec3d& r) {
-    const Vec3d Rh = R * b.h;
-    Mat3d I = R * b.I * R.transpose() - b.m * r * r.transpose() - Rh * r.transpose() - r * Rh.transpose();
-    I.diagonal().array() += b.m * r.squaredNorm() + 2 * r.dot(Rh);
-    return {b.m, Rh + b.m * r, I};
+    const Vec3d Rh = small::mul(R, b.h);
+    const Mat3d A = small::mul(R, b.I);
+    const Vec3d g(0.5 * b.m * r[0] + Rh[0], 0.5 * b.m * r[1] + Rh[1], 0.5 * b.m * r[2] + Rh[2]);
+    const double d = 2 * (r[0] * g[0] + r[1] * g[1] + r[2] * g[2]);
+    Mat3d I;
+    small::for_upper([&](int i, int j) FLANGE_INLINE_LAMBDA {
+      I(j, i) = I(i, j) = A(i, 0) * R(j, 0) + A(i, 1) * R(j, 1) + A(i, 2) * R(j, 2) - (g[i] * r[j] + r[i] * g[j]) +
+                          (i == j ? d : 0.0);
+    });
+    return {b.m, {Rh[0] + b.m * r[0], Rh[1] + b.m * r[1], Rh[2] + b.m * r[2]}, I};
   }
-  /// B of a body of inertia I moving at v, with its momentum h = I·v.
+  /// B of a body of inertia I moving at v, with its momentum h = I·v:
+  /// T = P + Pᵀ + v·hᵀ + h·vᵀ − 2·(h·v)·1 + ℓ̃ with P = I·ω̃ (I·W − W·I = P + Pᵀ
+  /// for a symmetric I), its symmetric part on the upper triangle.
   FLANGE_INLINE static velocity_coupling<space> coupling_of(const world_inertia<space>& I, const spatial<space>& v,
                                                             const spatial<space>& h) {
-    // I·W − W·I: column j of I·W is I·(ω × e_j).
-    Mat3d X;
-    X.col(0) = I.I * Vec3d(0, v.a[2], -v.a[1]);
-    X.col(1) = I.I * Vec3d(-v.a[2], 0, v.a[0]);
-    X.col(2) = I.I * Vec3d(v.a[1], -v.a[0], 0);
-    Mat3d T = X + X.transpose() + v.l * I.h.transpose() + I.h * v.l.transpose();
-    const double hv = 2 * I.h.dot(v.l);
-    T(0, 0) -= hv;
-    T(1, 1) -= hv;
-    T(2, 2) -= hv;
+    const Vec3d& w = v.a;
+    // P = I·ω̃: column j of ω̃ is ω × e_j.
+    Mat3d P;
+    for (int i = 0; i < 3; ++i) {
+      P(i, 0) = I.I(i, 1) * w[2] - I.I(i, 2) * w[1];
+      P(i, 1) = I.I(i, 2) * w[0] - I.I(i, 0) * w[2];
+      P(i, 2) = I.I(i, 0) * w[1] - I.I(i, 1) * w[0];
+    }
+    const double hv = 2 * (I.h[0] * v.l[0] + I.h[1] * v.l[1] + I.h[2] * v.l[2]);
+    Mat3d T;
+    small::for_upper([&](int i, int j) FLANGE_INLINE_LAMBDA {
+      T(j, i) = T(i, j) = P(i, j) + P(j, i) + v.l[i] * I.h[j] + I.h[i] * v.l[j] - (i == j ? hv : 0.0);
+    });
     T(0, 1) -= h.a[2];
     T(1, 0) += h.a[2];
     T(0, 2) += h.a[1];
     T(2, 0) -= h.a[1];
     T(1, 2) -= h.a[0];
     T(2, 1) += h.a[0];
-    return {T, 2 * h.l};
+    return {T, {2 * h.l[0], 2 * h.l[1], 2 * h.l[2]}};
   }
   /// A body's inertia as the 6 × 6 matrix [I h̃; h̃ᵀ m·1] that I·x applies.
   static Eigen::Matrix<double, 6, 6> matrix_of(const world_inertia<space>& b) {
@@ -651,8 +681,8 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   r[0].setZero();
   for (int L = 1; L < NL; ++L) {
     const int P = link_parent[L];
-    R[L] = R[P] * E[L].transpose();
-    r[L] = r[P] + R[P] * p[L];
+    R[L] = rotate_nt(R[P], E[L]);
+    r[L] = plus(r[P], rotate(R[P], p[L]));
   }
   // Every spatial quantity about link 1's origin, not the World's: the
   // passes hold in any fixed frame, and a base far from the World's origin
@@ -665,7 +695,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   for (int n = 1; n < NN; ++n) {
     const int L = node_link[n], P = parent[n], V = vparent[n];
     const auto w = turn(R[L], col[n].a);
-    s[n] = {w, R[L] * col[n].l + cross(r[L], w)};
+    s[n] = {w, plus(rotate(R[L], col[n].l), cross(r[L], w))};
     const double qd = v[rate[n]];
     vel[n] = vel[P] + s[n] * qd;
     u[n] = motion_cross(s[n], vel[V]);
@@ -700,7 +730,14 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   // derivatives are zero between nodes on different branches). Rows in node
   // order (parents first), so that M's factor keeps the tree's zeros; columns
   // in rate order.
-  Eigen::Matrix<double, N, N> M;
+  // M (of the articulated-body factor's chain, nothing: it needs no entry
+  // of M) and each node's pivot yardstick: the inertia its composite has
+  // about the passes' fixed point (the trace of its rotational inertia plus
+  // its mass), which the round-off of M(n, n) and of its pivot scale with.
+  // (Not M(n, n) itself: that is round-off where the joint moves nothing
+  // with inertia, a point mass on its axis.)
+  std::conditional_t<Articulated, std::array<int, 0>, Eigen::Matrix<double, N, N>> M;
+  std::array<double, N> yard;
   Eigen::Matrix<double, N, 1> b;  // Q − τ⁰, then v̇, by node
   std::array<spatial<G>, NN> y;   // I_n·s_n
   std::array<typename G::ang, NN> z;  // the angular part of B_nᵀ·s_n
@@ -736,7 +773,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
       }
     }
   // The bodies' own inertias, for M's articulated-body factor (the pass
-  // below sums them into the composites), which needs M's diagonal alone.
+  // below sums them into the composites).
   std::conditional_t<Articulated, std::array<world_inertia<G>, NN>, std::array<int, 0>> own;
   if constexpr (Articulated) own = Ic;
   for (int n = NN - 1; n >= 1; --n) {
@@ -745,7 +782,7 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
     z[n] = Bc[n].transposed_times(s[n]);
     b[n - 1] = -s[n].dot(F[n]);
     const spatial<G> Gv = Bc[n] * s[n] + Ic[n] * uv(n) * 2;
-    if constexpr (Articulated) M(n - 1, n - 1) = y[n].dot(s[n]);
+    yard[n - 1] = trace_of(Ic[n].I) + Ic[n].m;
     if constexpr (stacked) {
       const auto yn = numbers(y[n]), zn = numbers(spatial<G>{z[n], G::lin::Zero()}), gv = numbers(Gv);
       for (int j = 1; j <= n; ++j) {
@@ -970,27 +1007,22 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   // of M only its diagonal is formed); else M = Cᵀ·C (Featherstone's LTL
   // factorization, leaves first: C has the tree's zeros, where a root-first
   // factor would join siblings). Either way a pivot at or below
-  // pivot_tolerance of its diagonal entry stops it (a joint that moves
-  // nothing with inertia, or whose motion repeats others').
+  // pivot_tolerance of its yardstick stops it (a joint that moves nothing
+  // with inertia, or whose motion repeats others').
   constexpr double tol = pivot_tolerance<N, double>();
   std::conditional_t<Articulated, chain_factor<N, C>, std::array<int, 0>> chain_M;
   std::array<double, NN> inv;  // 1 / C(k − 1, k − 1), the Cholesky factor's
   if constexpr (Articulated) {
     std::array<std::array<double, C>, N> cols;
-    std::array<double, N> diag;
-    for (int k = 0; k < N; ++k) {
-      cols[k] = numbers(s[k + 1]);
-      diag[k] = M(k, k);
-    }
-    if (!chain_M.factor(cols, [&](int k) { return G::matrix_of(own[k + 1]); }, diag.data(), tol)) [[unlikely]]
-      return {rate[chain_M.failed + 1], chain_M.failed_d, diag[chain_M.failed]};
+    for (int k = 0; k < N; ++k) cols[k] = numbers(s[k + 1]);
+    if (!chain_M.factor(cols, [&](int k) { return G::matrix_of(own[k + 1]); }, yard.data(), tol)) [[unlikely]]
+      return {rate[chain_M.failed + 1], chain_M.failed_d, yard[chain_M.failed]};
   } else if constexpr (chain) {
     // Every node above k: dense loops the compiler vectorizes.
-    std::array<double, N> c, diag;
-    for (int k = 0; k < N; ++k) diag[k] = M(k, k);
+    std::array<double, N> c;
     for (int k = N - 1; k >= 0; --k) {
-      if (!(M(k, k) > tol * diag[k])) [[unlikely]]
-        return {rate[k + 1], M(k, k), diag[k]};
+      if (!(M(k, k) > tol * yard[k])) [[unlikely]]
+        return {rate[k + 1], M(k, k), yard[k]};
       const double d = std::sqrt(M(k, k)), e = 1 / d;
       M(k, k) = d;
       for (int i = 0; i < k; ++i) c[i] = M(k, i) = M(k, i) * e;
@@ -998,11 +1030,9 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
         for (int i = j; i < k; ++i) M(i, j) -= c[i] * c[j];
     }
   } else {
-    std::array<double, N> diag;
-    for (int k = 0; k < N; ++k) diag[k] = M(k, k);
     for (int k = NN - 1; k >= 1; --k) {
-      if (!(M(k - 1, k - 1) > tol * diag[k - 1])) [[unlikely]]
-        return {rate[k], M(k - 1, k - 1), diag[k - 1]};
+      if (!(M(k - 1, k - 1) > tol * yard[k - 1])) [[unlikely]]
+        return {rate[k], M(k - 1, k - 1), yard[k - 1]};
       const double d = std::sqrt(M(k - 1, k - 1));
       M(k - 1, k - 1) = d;
       // k's ancestors, nearest first, and row k's entries for them: each

@@ -188,12 +188,24 @@ void jacobian_analytic(const S& scene, double t, const State& x, jacobian_matrix
   // links: 80 against 67 µs, docs/performance.md).
   constexpr auto row = detail::derivative_row_rate<S>;
   constexpr auto coordinate = detail::rate_coordinate<S>;
+  // Where rate r is row r and coordinate r (a tree of one-rate joints in
+  // rate order: every chain), the places are known without the tables.
+  constexpr bool in_order = [] {
+    for (int r = 0; r < nv; ++r)
+      if (detail::derivative_row_rate<S>[r] != r || detail::rate_coordinate<S>[r] != r) return false;
+    return true;
+  }();
   auto copy_rows = [&](int r0, auto width) FLANGE_INLINE_LAMBDA {
     constexpr int w = decltype(width)::value;
     for (int c = 0; c < nv; ++c) {
-      if (coordinate[c] >= 0)
-        for (int k = 0; k < w; ++k) at(nq + row[r0 + k], coordinate[c]) = d(r0 + k, c);
-      for (int k = 0; k < w; ++k) at(nq + row[r0 + k], nq + c) = d(r0 + k, nv + c);
+      if constexpr (in_order) {
+        for (int k = 0; k < w; ++k) at(nq + r0 + k, c) = d(r0 + k, c);
+        for (int k = 0; k < w; ++k) at(nq + r0 + k, nq + c) = d(r0 + k, nv + c);
+      } else {
+        if (coordinate[c] >= 0)
+          for (int k = 0; k < w; ++k) at(nq + row[r0 + k], coordinate[c]) = d(r0 + k, c);
+        for (int k = 0; k < w; ++k) at(nq + row[r0 + k], nq + c) = d(r0 + k, nv + c);
+      }
     }
   };
   constexpr int tile = 4;
