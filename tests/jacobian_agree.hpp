@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include <catch2/catch.hpp>
@@ -63,6 +64,20 @@ void agree_at(const S& scene, const typename S::state_type& x, double t = 0.3, i
     double largest = 1;
     for (int i = 0; i < S::n_v; ++i) largest = std::max(largest, std::abs(f[S::n_q + i]));
     for (int i = 0; i < S::n_v; ++i) CHECK(std::abs(vdot[i] - f[S::n_q + i]) <= 1e-12 * largest);
+#if defined(FLANGE_X86_DISPATCH) && !defined(FLANGE_NO_AVX2)
+    // The passes compiled for AVX2 give the portable passes' numbers to the
+    // bit (no product and sum fused into one rounding).
+    if (detail::cpu_has_avx2) {
+      constexpr bool A = detail::articulated_solve<S>();
+      detail::derivative_rows<S> portable, avx2;
+      std::array<double, S::n_v> vdot_portable, vdot_avx2;
+      const double* q = xs.data();
+      detail::acceleration_derivatives_portable<S, A>(scene, t, q, q + S::n_q, portable, vdot_portable.data());
+      detail::acceleration_derivatives_avx2<S, A>(scene, t, q, q + S::n_q, avx2, vdot_avx2.data());
+      CHECK(std::memcmp(portable.data(), avx2.data(), sizeof(double) * portable.size()) == 0);
+      CHECK(std::memcmp(vdot_portable.data(), vdot_avx2.data(), sizeof vdot_portable) == 0);
+    }
+#endif
     // And central differences to their accuracy (h = ε^(1/3): about 1e-10
     // relative, so 1e-7 of the largest entry; jacobian_test.cpp's bar), where
     // the derivative is smooth on the scale of h.

@@ -34,7 +34,10 @@
 // M with 2N + 1 right-hand sides: by M's Cholesky factor (O(N³) on a chain),
 // or on a chain of 24 nodes or more (12 in the plane) by its articulated-body
 // factor (math/chain_solve.hpp, O(N²)). A pivot of either factor is tested
-// against the inertia its node's composite has about the fixed point.
+// against the inertia its node's composite has about the fixed point. The
+// passes are compiled twice, for every x86-64 and for AVX2 without fused
+// multiply-adds, and the processor's is chosen at run time: the same
+// numbers to the bit (acceleration_derivatives, at the end).
 //
 // The force elements' loads (torques, springs, dampers, world forces,
 // contacts) are computed by their own code in dual numbers, turned into
@@ -84,6 +87,7 @@
 
 #include <Eigen/Core>
 
+#include "flange/detail/cpu.hpp"
 #include "flange/detail/static_for.hpp"
 #include "flange/dynamics/external.hpp"
 #include "flange/dynamics/forward_dynamics.hpp"
@@ -625,9 +629,13 @@ using derivative_rows = Eigen::Matrix<double, S::n_v, tree_solve_row(2 * S::n_v 
 /// written; index is its rate), as the mass-matrix solve reports it.
 /// Articulated: M⁻¹ by its articulated-body factor (math/chain_solve.hpp, a
 /// chain's), else by its Cholesky factor; the two agree to round-off.
-template <class S, bool Articulated = articulated_solve<S>()>
-pivot_report<double> acceleration_derivatives(const S& scene, double t, const double* q, const double* v,
-                                              derivative_rows<S>& out, double* vdot = nullptr) {
+/// Always inlined into the two functions that compile it (below): one for
+/// the instructions every x86-64 runs, one for AVX2.
+template <class S, bool Articulated>
+[[gnu::always_inline]] inline pivot_report<double> acceleration_derivatives_passes(const S& scene, double t,
+                                                                                  const double* q, const double* v,
+                                                                                  derivative_rows<S>& out,
+                                                                                  double* vdot) {
   static_assert(analytic_derivatives<S>());
   constexpr int NL = S::tree.n_links, N = S::n_v, NN = N + 1;
   using nodes = derivative_nodes<S>;
@@ -1149,6 +1157,44 @@ pivot_report<double> acceleration_derivatives(const S& scene, double t, const do
   if constexpr (Articulated) chain_solve<N, C, 2 * N + 1, tree_solve_row(2 * N + 1)>(chain_M, out.data());
   else tree_solve<tree, 2 * N + 1>(M.data(), N, inv.data(), out.data());
   return {};
+}
+
+/// The passes as every x86-64 runs them (SSE2, or what the build's -march
+/// gives).
+template <class S, bool Articulated>
+pivot_report<double> acceleration_derivatives_portable(const S& scene, double t, const double* q, const double* v,
+                                                       derivative_rows<S>& out, double* vdot) {
+  return acceleration_derivatives_passes<S, Articulated>(scene, t, q, v, out, vdot);
+}
+
+#if defined(FLANGE_X86_DISPATCH) && !defined(FLANGE_NO_AVX2)
+/// The same passes compiled for AVX2: three-operand instructions (no copy
+/// of a register before each product) and four numbers a register where the
+/// compiler vectorizes (the stacked pairs). Without fused multiply-adds
+/// (no "fma" target): each product and sum is rounded as in the portable
+/// passes, so that both give the same numbers to the bit, in any build.
+/// (Where the compiler is free to fuse, it fuses where its inlining lets it,
+/// which differs from one build to the next: the Python module's Jacobians
+/// would differ from the C++ API's in their last bits.)
+template <class S, bool Articulated>
+[[gnu::target("avx2")]] pivot_report<double> acceleration_derivatives_avx2(const S& scene, double t, const double* q,
+                                                                           const double* v, derivative_rows<S>& out,
+                                                                           double* vdot) {
+  return acceleration_derivatives_passes<S, Articulated>(scene, t, q, v, out, vdot);
+}
+#endif
+
+/// ∂v̇/∂x by the passes above (acceleration_derivatives_passes), compiled for
+/// AVX2 where the processor runs it (detail/cpu.hpp, asked once) and
+/// FLANGE_NO_AVX2 is not defined, else for every x86-64: the same numbers
+/// either way.
+template <class S, bool Articulated = articulated_solve<S>()>
+pivot_report<double> acceleration_derivatives(const S& scene, double t, const double* q, const double* v,
+                                              derivative_rows<S>& out, double* vdot = nullptr) {
+#if defined(FLANGE_X86_DISPATCH) && !defined(FLANGE_NO_AVX2)
+  if (cpu_has_avx2) return acceleration_derivatives_avx2<S, Articulated>(scene, t, q, v, out, vdot);
+#endif
+  return acceleration_derivatives_portable<S, Articulated>(scene, t, q, v, out, vdot);
 }
 
 }  // namespace flange::detail
