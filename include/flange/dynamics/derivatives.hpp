@@ -1012,7 +1012,7 @@ template <class S, bool Articulated>
 
   // M's factor: on a long chain (Articulated) its articulated-body factor
   // (math/chain_solve.hpp, from the bodies' own inertias and the columns:
-  // of M only its diagonal is formed); else M = Cᵀ·C (Featherstone's LTL
+  // no entry of M is formed); else M = Cᵀ·C (Featherstone's LTL
   // factorization, leaves first: C has the tree's zeros, where a root-first
   // factor would join siblings). Either way a pivot at or below
   // pivot_tolerance of its yardstick stops it (a joint that moves nothing
