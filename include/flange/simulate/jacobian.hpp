@@ -187,6 +187,7 @@ void jacobian_analytic(const S& scene, double t, const State& x, jacobian_matrix
   // 64 rates) take four numbers at a visit and d's rows are read along (64
   // links: 80 against 67 µs, docs/performance.md).
   constexpr auto row = detail::derivative_row_rate<S>;
+  constexpr auto coordinate = detail::rate_coordinate<S>;
   // Where rate r is row r and coordinate r (a tree of one-rate joints in
   // rate order: every chain), the places are known without the tables.
   constexpr bool in_order = [] {
@@ -194,21 +195,24 @@ void jacobian_analytic(const S& scene, double t, const State& x, jacobian_matrix
       if (detail::derivative_row_rate<S>[r] != r || detail::rate_coordinate<S>[r] != r) return false;
     return true;
   }();
-  auto row_of = [](int r) FLANGE_INLINE_LAMBDA { return in_order ? r : detail::derivative_row_rate<S>[r]; };
-  auto coordinate_of = [](int c) FLANGE_INLINE_LAMBDA { return in_order ? c : detail::rate_coordinate<S>[c]; };
   auto copy_rows = [&](int r0, auto width) FLANGE_INLINE_LAMBDA {
     constexpr int w = decltype(width)::value;
     for (int c = 0; c < nv; ++c) {
-      if (const int qc = coordinate_of(c); qc >= 0)
-        for (int k = 0; k < w; ++k) at(nq + row_of(r0 + k), qc) = d(r0 + k, c);
-      for (int k = 0; k < w; ++k) at(nq + row_of(r0 + k), nq + c) = d(r0 + k, nv + c);
+      if constexpr (in_order) {
+        for (int k = 0; k < w; ++k) at(nq + r0 + k, c) = d(r0 + k, c);
+        for (int k = 0; k < w; ++k) at(nq + r0 + k, nq + c) = d(r0 + k, nv + c);
+      } else {
+        if (coordinate[c] >= 0)
+          for (int k = 0; k < w; ++k) at(nq + row[r0 + k], coordinate[c]) = d(r0 + k, c);
+        for (int k = 0; k < w; ++k) at(nq + row[r0 + k], nq + c) = d(r0 + k, nv + c);
+      }
     }
   };
   constexpr int tile = 4;
   for (int r0 = 0; r0 + tile <= nv; r0 += tile) copy_rows(r0, std::integral_constant<int, tile>{});
   if constexpr (nv % tile != 0) copy_rows(nv - nv % tile, std::integral_constant<int, nv % tile>{});
   for (int c = 0; c < nv; ++c)
-    if (const int qc = coordinate_of(c); qc >= 0) at(qc, nq + c) = 1;
+    if (coordinate[c] >= 0) at(coordinate[c], nq + c) = 1;
   // A ball's quaternion Q = (x, y, z, w): q̇ = ½·Q ⊗ (ω, 0) (linear in Q and
   // in ω), and ∂v̇/∂Q through the turn δ (link coordinates) that a change of
   // Q makes, δ = 2·vec(Q* ⊗ dQ)/|Q|² (R is homogeneous in Q: a change along
