@@ -450,6 +450,48 @@ struct derivative_nodes {
   }();
 };
 
+/// Whether column K of link motion M has no angular part, by type (a
+/// typed zero).
+template <class M, int K>
+constexpr bool translation_column() {
+  using A = std::remove_cvref_t<decltype(std::declval<const M&>().template col<K>().ang)>;
+  if constexpr (is_svec<A>) return A::mask == 0;
+  else return false;
+}
+
+template <class M, int... K>
+constexpr unsigned translation_columns(std::integer_sequence<int, K...>) {
+  return ((unsigned(translation_column<M, K>()) << K) | ... | 0u);
+}
+
+/// Which nodes move by translation alone, by type: node n's column has no
+/// angular part (a Prismatic, a ball's or a Cylindrical's translation) and
+/// neither has any node above it (node 0, the World, is one). Such a node's
+/// velocity, acceleration and their changes have no angular part, so that
+/// for a node whose velocity parent V is one, u = s × v_V and ψ = s × a_V −
+/// u × v_V read the linear parts alone (one cross product each; none where
+/// the node is one itself: u = ψ = 0, and so are its pairs' u and ψ terms).
+template <class S>
+inline constexpr auto translating_nodes = [] {
+  using nodes = derivative_nodes<S>;
+  using motions = decltype(link_motions<spatial_algebra, double, true>(std::declval<const S&>(),
+                                                                      std::declval<const double*>()));
+  std::array<unsigned, S::tree.n_links> mask{};  // bit k: column k of link L's joint
+  [&]<int... L>(std::integer_sequence<int, L...>) {
+    ((mask[L + 1] = translation_columns<std::tuple_element_t<L, motions>>(
+          std::make_integer_sequence<int, link_info<S, L + 1>::nv>{})),
+     ...);
+  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+  std::array<bool, nodes::NN> column{}, r{};
+  for (int n = 1; n < nodes::NN; ++n) {
+    const int L = nodes::table.link[n], k = n - (nodes::table.last[L] - S::table.nv[S::tree.link_joint[L]] + 1);
+    column[n] = (mask[L] >> k) & 1u;
+  }
+  r[0] = true;
+  for (int n = 1; n < nodes::NN; ++n) r[n] = column[n] && r[nodes::table.parent[n]];
+  return r;
+}();
+
 /// Whether acceleration_derivatives solves with M's articulated-body factor
 /// (math/chain_solve.hpp) rather than with the triangular solves of its
 /// Cholesky factor (math/tree_solve.hpp): on a chain of at least 4·C nodes
@@ -649,6 +691,7 @@ template <class S, bool Articulated>
   constexpr auto rate = nodes::table.rate;
   constexpr auto node_link = nodes::table.link;
   constexpr auto last = nodes::table.last;
+  constexpr auto translating = translating_nodes<S>;
   constexpr bool balls = [] {
     for (int L = 1; L < NL; ++L)
       if (ball_links<S>[L]) return true;
@@ -698,7 +741,8 @@ template <class S, bool Articulated>
   // a light link's few 1e-4 kg m² are lost to round-off.
   const typename G::lin r1 = r[1];
   for (int L = 1; L < NL; ++L) r[L] -= r1;
-  vel[0] = acc[0] = {G::zero_ang(), G::lin::Zero()};
+  const spatial<G> zero{G::zero_ang(), G::lin::Zero()};
+  vel[0] = acc[0] = zero;
   if constexpr (S::has_gravity) acc[0].l = G::lin_of(scene.model().minus_g);
   for (int n = 1; n < NN; ++n) {
     const int L = node_link[n], P = parent[n], V = vparent[n];
@@ -706,7 +750,9 @@ template <class S, bool Articulated>
     s[n] = {w, plus(rotate(R[L], col[n].l), cross(r[L], w))};
     const double qd = v[rate[n]];
     vel[n] = vel[P] + s[n] * qd;
-    u[n] = motion_cross(s[n], vel[V]);
+    if (!translating[V]) u[n] = motion_cross(s[n], vel[V]);
+    else if (translating[n]) u[n] = zero;
+    else u[n] = {G::zero_ang(), cross(s[n].a, vel[V].l)};
     acc[n] = acc[P] - u[n] * qd;  // v_L × s_L = v_V × s_L
     if (one_node_links || n == last[L]) {
       Ic[n] = G::to_world(scene.model().link[L], R[L], r[L]);
@@ -811,7 +857,7 @@ template <class S, bool Articulated>
     } else {
       for (int j = n; j != 0; j = parent[j]) {
         if constexpr (!Articulated) M(n - 1, j - 1) = y[n].dot(s[j]);
-        out(n - 1, N + rate[j]) = inner(z[n], s[j].a) + 2 * y[n].dot(uv(j));
+        out(n - 1, N + rate[j]) = translating[j] ? 0.0 : inner(z[n], s[j].a) + 2 * y[n].dot(uv(j));
       }
       for (int j = parent[n]; j != 0; j = parent[j]) out(j - 1, N + i) = s[j].dot(Gv);
     }
@@ -1079,7 +1125,9 @@ template <class S, bool Articulated>
   for (int n = 1; n < NN; ++n) {
     const int P = parent[n], V = vparent[n];
     da[n] = da[P] + s[n] * b[n - 1];
-    psi[n] = motion_cross(s[n], acc[V] + da[V]) - motion_cross(u[n], vel[V]);
+    if (!translating[V]) psi[n] = motion_cross(s[n], acc[V] + da[V]) - motion_cross(u[n], vel[V]);
+    else if (translating[n]) psi[n] = zero;
+    else psi[n] = {G::zero_ang(), cross(s[n].a, plus(acc[V].l, da[V].l))};
     if constexpr (stacked) {
       const auto pn = numbers(psi[n]);
       for (int c = 0; c < C; ++c) pc[c][n] = pn[c];
@@ -1096,7 +1144,8 @@ template <class S, bool Articulated>
     // With loads, ∂s_n/∂q_j = s_j × s_n turns their share: −(s_j × s_n)ᵀ·W_n.
     std::conditional_t<loaded, spatial<G>, int> gw{};
     if constexpr (loaded) gw = force_cross(s[n], W[n]);
-    const spatial<G> Gq = force_cross(s[n], F[n]) + Bc[n] * u[n] - Ic[n] * psi[n];
+    const spatial<G> Gq =
+        translating[n] ? force_cross(s[n], F[n]) : force_cross(s[n], F[n]) + Bc[n] * u[n] - Ic[n] * psi[n];
     if constexpr (stacked) {
       const auto yn = numbers(y[n]), zn = numbers(spatial<G>{z[n], G::lin::Zero()}), gq = numbers(Gq);
       for (int j = 1; j <= n; ++j) {
@@ -1112,7 +1161,7 @@ template <class S, bool Articulated>
       }
     } else {
       for (int j = n; j != 0; j = parent[j]) {
-        double e = y[n].dot(psi[j]) - inner(z[n], u[j].a);
+        double e = translating[j] ? 0.0 : y[n].dot(psi[j]) - inner(z[n], u[j].a);
         if constexpr (loaded) e += s[j].dot(gw);
         out(n - 1, rate[j]) = e;
       }
