@@ -450,45 +450,62 @@ struct derivative_nodes {
   }();
 };
 
-/// Whether column K of link motion M has no angular part, by type (a
-/// typed zero).
-template <class M, int K>
-constexpr bool translation_column() {
-  using A = std::remove_cvref_t<decltype(std::declval<const M&>().template col<K>().ang)>;
+/// Whether part Lin (its linear part, else its angular one) of column K of
+/// link motion M is zero by type (a typed zero).
+template <class M, int K, bool Lin>
+constexpr bool zero_column_part() {
+  using C = decltype(std::declval<const M&>().template col<K>());
+  using A = std::remove_cvref_t<std::conditional_t<Lin, decltype(std::declval<C>().lin), decltype(std::declval<C>().ang)>>;
   if constexpr (is_svec<A>) return A::mask == 0;
   else return false;
 }
-
-template <class M, int... K>
-constexpr unsigned translation_columns(std::integer_sequence<int, K...>) {
-  return ((unsigned(translation_column<M, K>()) << K) | ... | 0u);
+template <class M, bool Lin, int... K>
+constexpr unsigned zero_column_parts(std::integer_sequence<int, K...>) {
+  return ((unsigned(zero_column_part<M, K, Lin>()) << K) | ... | 0u);
 }
 
-/// Which nodes move by translation alone, by type: node n's column has no
-/// angular part (a Prismatic, a ball's or a Cylindrical's translation) and
-/// neither has any node above it (node 0, the World, is one). Such a node's
-/// velocity, acceleration and their changes have no angular part, so that
-/// for a node whose velocity parent V is one, u = s × v_V and ψ = s × a_V −
-/// u × v_V read the linear parts alone (one cross product each; none where
-/// the node is one itself: u = ψ = 0, and so are its pairs' u and ψ terms).
+/// Which parts of the nodes' columns are zero by type: no_ang[n] (a
+/// translation: a Prismatic's, a ball's or a Cylindrical's) and no_lin[n] (a
+/// rotation about an axis through the link's origin: a Revolute's, a ball's).
+template <class S>
+struct column_parts {
+  using nodes = derivative_nodes<S>;
+  static constexpr auto table = [] {
+    using motions = decltype(link_motions<spatial_algebra, double, true>(std::declval<const S&>(),
+                                                                        std::declval<const double*>()));
+    std::array<unsigned, S::tree.n_links> ang{}, lin{};  // bit k: column k of link L's joint
+    [&]<int... L>(std::integer_sequence<int, L...>) {
+      ((ang[L + 1] = zero_column_parts<std::tuple_element_t<L, motions>, false>(
+            std::make_integer_sequence<int, link_info<S, L + 1>::nv>{}),
+        lin[L + 1] = zero_column_parts<std::tuple_element_t<L, motions>, true>(
+            std::make_integer_sequence<int, link_info<S, L + 1>::nv>{})),
+       ...);
+    }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
+    struct r_t {
+      std::array<bool, nodes::NN> no_ang{}, no_lin{};
+    } r;
+    for (int n = 1; n < nodes::NN; ++n) {
+      const int L = nodes::table.link[n], k = n - (nodes::table.last[L] - S::table.nv[S::tree.link_joint[L]] + 1);
+      r.no_ang[n] = (ang[L] >> k) & 1u;
+      r.no_lin[n] = (lin[L] >> k) & 1u;
+    }
+    return r;
+  }();
+};
+
+/// Which nodes move by translation alone: node n's column has no angular
+/// part (column_parts) and neither has any node above it (node 0, the
+/// World, is one). Such a node's velocity, acceleration and their changes
+/// have no angular part, so that for a node whose velocity parent V is one,
+/// u = s × v_V and ψ = s × a_V − u × v_V read the linear parts alone (one
+/// cross product each; none where the node is one itself: u = ψ = 0, and so
+/// are its pairs' u and ψ terms).
 template <class S>
 inline constexpr auto translating_nodes = [] {
   using nodes = derivative_nodes<S>;
-  using motions = decltype(link_motions<spatial_algebra, double, true>(std::declval<const S&>(),
-                                                                      std::declval<const double*>()));
-  std::array<unsigned, S::tree.n_links> mask{};  // bit k: column k of link L's joint
-  [&]<int... L>(std::integer_sequence<int, L...>) {
-    ((mask[L + 1] = translation_columns<std::tuple_element_t<L, motions>>(
-          std::make_integer_sequence<int, link_info<S, L + 1>::nv>{})),
-     ...);
-  }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
-  std::array<bool, nodes::NN> column{}, r{};
-  for (int n = 1; n < nodes::NN; ++n) {
-    const int L = nodes::table.link[n], k = n - (nodes::table.last[L] - S::table.nv[S::tree.link_joint[L]] + 1);
-    column[n] = (mask[L] >> k) & 1u;
-  }
+  std::array<bool, nodes::NN> r{};
   r[0] = true;
-  for (int n = 1; n < nodes::NN; ++n) r[n] = column[n] && r[nodes::table.parent[n]];
+  for (int n = 1; n < nodes::NN; ++n) r[n] = column_parts<S>::table.no_ang[n] && r[nodes::table.parent[n]];
   return r;
 }();
 
@@ -692,6 +709,7 @@ template <class S, bool Articulated>
   constexpr auto node_link = nodes::table.link;
   constexpr auto last = nodes::table.last;
   constexpr auto translating = translating_nodes<S>;
+  constexpr auto parts = column_parts<S>::table;
   constexpr bool balls = [] {
     for (int L = 1; L < NL; ++L)
       if (ball_links<S>[L]) return true;
@@ -746,8 +764,10 @@ template <class S, bool Articulated>
   if constexpr (S::has_gravity) acc[0].l = G::lin_of(scene.model().minus_g);
   for (int n = 1; n < NN; ++n) {
     const int L = node_link[n], P = parent[n], V = vparent[n];
-    const auto w = turn(R[L], col[n].a);
-    s[n] = {w, plus(rotate(R[L], col[n].l), cross(r[L], w))};
+    // A column's part that is zero by type stays zero: no turn of it.
+    if (parts.no_ang[n]) s[n] = {G::zero_ang(), rotate(R[L], col[n].l)};
+    else if (parts.no_lin[n]) s[n] = {turn(R[L], col[n].a), cross(r[L], turn(R[L], col[n].a))};
+    else s[n] = {turn(R[L], col[n].a), plus(rotate(R[L], col[n].l), cross(r[L], turn(R[L], col[n].a)))};
     const double qd = v[rate[n]];
     vel[n] = vel[P] + s[n] * qd;
     if (!translating[V]) u[n] = motion_cross(s[n], vel[V]);
