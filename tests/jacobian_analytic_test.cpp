@@ -213,3 +213,26 @@ TEST_CASE("a singular mass matrix stops the analytic Jacobian with the derivativ
   const std::array<double, 4> bad{0.3, std::nan(""), 0.5, 1.0};
   REQUIRE_THROWS_WITH(jacobian(s, 0.0, bad), Catch::Contains("not finite"));
 }
+
+TEST_CASE("a singular mass matrix stops a tree's written-out factor with the derivative's reason") {
+  // Two branches off b0: j2 turns a body with inertia, j1 a point mass
+  // about an axis through it (its pivot is zero). A tree, not a chain, of
+  // few nodes: M is factored written out (factor_tree_written_out).
+  const auto s = scene(World<"world">{}, Revolute<"j0", axis::z>{}, FixedTranslation<"r0">({.d = Vec3d(0.5, 0, 0)}),
+                       Body<"b0">({.m = 1.0, .J = Vec3d(0.1, 0.1, 0.1).asDiagonal()}), Revolute<"j1", axis::z>{},
+                       Body<"b1">({.m = 1.0, .J = Mat3d::Zero()}), Revolute<"j2", axis::x>{},
+                       FixedTranslation<"r2">({.d = Vec3d(0, 0.4, 0)}),
+                       Body<"b2">({.m = 2.0, .J = Vec3d(0.2, 0.1, 0.3).asDiagonal()}),
+                       connect<"world.frame_b", "j0.frame_a">, connect<"j0.frame_b", "r0.frame_a">,
+                       connect<"r0.frame_b", "b0.frame_a">, connect<"r0.frame_b", "j1.frame_a">,
+                       connect<"j1.frame_b", "b1.frame_a">, connect<"r0.frame_b", "j2.frame_a">,
+                       connect<"j2.frame_b", "r2.frame_a">, connect<"r2.frame_b", "b2.frame_a">);
+  using S = std::remove_cvref_t<decltype(s)>;
+  STATIC_REQUIRE(detail::analytic_derivatives<S>());
+  STATIC_REQUIRE(!detail::derivative_nodes<S>::chain);
+  STATIC_REQUIRE(detail::unrolled_factor<S>());
+  const std::array<double, 6> x{0.3, -0.2, 0.7, 0.5, 1.0, -0.4};
+  std::array<double, 6> f;
+  REQUIRE_THROWS_WITH(s(x, f, 0.0), Catch::Contains("singular mass matrix") && Catch::Contains("\"j1\""));
+  REQUIRE_THROWS_WITH(jacobian(s, 0.0, x), Catch::Contains("singular mass matrix") && Catch::Contains("\"j1\""));
+}

@@ -520,6 +520,89 @@ constexpr bool articulated_solve() {
   return derivative_nodes<S>::chain && S::n_v >= 4 * C;
 }
 
+/// Each node's ancestors other than the World, nearest first, as M's
+/// indices (node − 1): up[k][0 … depth[k] − 1]. The leaves-first factor
+/// of M updates, for node k, the entries of every pair of them.
+template <class S>
+struct factor_ancestry {
+  static constexpr int NN = S::n_v + 1;
+  struct table_t {
+    std::array<std::array<int, NN>, NN> up{};
+    std::array<int, NN> depth{};
+  };
+  static constexpr table_t table = [] {
+    table_t t{};
+    for (int k = 1; k < NN; ++k)
+      for (int i = derivative_nodes<S>::table.parent[k]; i != 0; i = derivative_nodes<S>::table.parent[i])
+        t.up[k][t.depth[k]++] = i - 1;
+    return t;
+  }();
+  static constexpr const auto& up = table.up;
+  static constexpr const auto& depth = table.depth;
+  /// Pair p, row by row, of the triangle a ≤ b < depth: (a, b).
+  static consteval std::pair<int, int> pair(int depth, int p) {
+    int a = 0;
+    while (p >= depth - a) p -= depth - a++;
+    return {a, a + p};
+  }
+  /// The updates of the whole factor: Σ over k of depth·(depth + 1)/2.
+  static constexpr int updates = [] {
+    int u = 0;
+    for (int k = 1; k < NN; ++k) u += table.depth[k] * (table.depth[k] + 1) / 2;
+    return u;
+  }();
+};
+
+/// The most updates a tree's factor of M is written out for
+/// (factor_ancestry): up to it each update's place is a constant; beyond
+/// it the code would grow past what it saves.
+inline constexpr int unrolled_factor_updates = 600;
+
+/// Whether acceleration_derivatives factors a tree's M written out
+/// (factor_ancestry) rather than in loops that walk its ancestors.
+template <class S>
+constexpr bool unrolled_factor() {
+  return factor_ancestry<S>::updates <= unrolled_factor_updates;
+}
+
+/// M = Cᵀ·C in place, leaves first (Featherstone's LTL: C has the tree's
+/// zeros), written out from factor_ancestry: every update's place a
+/// constant. The same products in the same order as the loops of
+/// acceleration_derivatives_passes that walk the ancestors. Returns 0, or
+/// the node whose pivot is at or below tol of its yardstick (M(k − 1, k − 1)
+/// left as it was). Compiled once, not in each of the passes' two builds:
+/// written out, it is a good part of their compile time.
+template <class S>
+[[gnu::noinline]] int factor_tree_written_out(Eigen::Matrix<double, S::n_v, S::n_v>& M,
+                                              const std::array<double, S::n_v>& yard, double tol) {
+  constexpr int NN = S::n_v + 1;
+  using anc = factor_ancestry<S>;
+  int failed = 0;
+  [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
+    return ([&] FLANGE_INLINE_LAMBDA {
+      constexpr int k = NN - 1 - K, depth = anc::depth[k];
+      if (!(M(k - 1, k - 1) > tol * yard[k - 1])) [[unlikely]] {
+        failed = k;
+        return false;
+      }
+      const double d = std::sqrt(M(k - 1, k - 1));
+      M(k - 1, k - 1) = d;
+      std::array<double, depth> c;
+      [&]<int... A>(std::integer_sequence<int, A...>) FLANGE_INLINE_LAMBDA {
+        ((c[A] = M(k - 1, anc::up[k][A]) /= d), ...);
+      }(std::make_integer_sequence<int, depth>{});
+      // Pair P of the triangle a ≤ b < depth, row by row.
+      [&]<int... P>(std::integer_sequence<int, P...>) FLANGE_INLINE_LAMBDA {
+        ((M(anc::up[k][anc::pair(depth, P).first], anc::up[k][anc::pair(depth, P).second]) -=
+          c[anc::pair(depth, P).first] * c[anc::pair(depth, P).second]),
+         ...);
+      }(std::make_integer_sequence<int, depth * (depth + 1) / 2>{});
+      return true;
+    }() && ...);
+  }(std::make_integer_sequence<int, NN - 1>{});
+  return failed;
+}
+
 /// The nodes' tree as math/tree_solve.hpp reads it.
 template <class S>
 struct node_parents {
@@ -1103,6 +1186,9 @@ template <class S, bool Articulated>
       for (int j = 0; j < k; ++j)
         for (int i = j; i < k; ++i) M(i, j) -= c[i] * c[j];
     }
+  } else if constexpr (unrolled_factor<S>()) {
+    if (const int k = factor_tree_written_out<S>(M, yard, tol); k != 0) [[unlikely]]
+      return {rate[k], M(k - 1, k - 1), yard[k - 1]};
   } else {
     for (int k = NN - 1; k >= 1; --k) {
       if (!(M(k - 1, k - 1) > tol * yard[k - 1])) [[unlikely]]
