@@ -80,8 +80,8 @@ void run() {
   double tree = 0, chain = 0, diff = 0;
 #if defined(FLANGE_TREE_SOLVE_AVX2) && defined(FLANGE_CHAIN_SOLVE_AVX2)
   if (flange::detail::cpu_has_avx2_fma) {
-    tree = timed(X, [&](double* x) { flange::detail::tree_solve_avx2<Tree, row>(F.data(), N, inv.data(), x); });
-    chain = timed(Y, [&](double* x) { flange::detail::chain_solve_avx2<N, C, row>(f, x); });
+    tree = timed(X, [&](double* x) { flange::detail::tree_solve_avx2<Tree, row, row>(F.data(), N, inv.data(), x); });
+    chain = timed(Y, [&](double* x) { flange::detail::chain_solve_avx2<N, C, row, row>(f, x); });
     double scale = 0;
     for (int i = 0; i < N * row; ++i) {
       diff = std::max(diff, std::abs(X[i] - Y[i]));

@@ -52,7 +52,7 @@ void run() {
       std::copy(B.begin(), B.end(), Y.begin());
       double* y = Y.data();
       asm volatile("" : "+r"(y));  // an address the kernel does not know, as in flange
-      flange::detail::tree_solve_avx2<Tree, row>(C.data(), N, inv.data(), y);
+      flange::detail::tree_solve_avx2<Tree, row, row>(C.data(), N, inv.data(), y);
     });
     for (int i = 0; i < N * row; ++i) diff = std::max(diff, std::abs(X[i] - Y[i]));
   }

@@ -1309,8 +1309,25 @@ template <class S, bool Articulated>
       }
     }
   }
-  if constexpr (Articulated) chain_solve<N, C, 2 * N + 1, tree_solve_row(2 * N + 1)>(chain_M, out.data());
-  else tree_solve<tree, 2 * N + 1>(M.data(), N, inv.data(), out.data());
+  // M⁻¹ on the columns: ∂/∂t's only where some of it is not zero (a drive
+  // or a load that changes with the time), and where leaving it out spares
+  // four of the solve's columns (2N a multiple of four); a zero column
+  // stays zero.
+  constexpr int row = tree_solve_row(2 * N + 1);
+  auto solve = [&](auto cols) FLANGE_INLINE_LAMBDA {
+    constexpr int Cols = decltype(cols)::value;
+    if constexpr (Articulated) chain_solve<N, C, Cols, row>(chain_M, out.data());
+    else tree_solve<tree, Cols, row>(M.data(), N, inv.data(), out.data());
+  };
+  if constexpr (tree_solve_row(2 * N) < row) {
+    bool steady = true;
+    for (int n = 0; n < N; ++n) steady = steady && out(n, 2 * N) == 0;
+    if (steady) {
+      solve(std::integral_constant<int, 2 * N>{});
+      return {};
+    }
+  }
+  solve(std::integral_constant<int, 2 * N + 1>{});
   return {};
 }
 

@@ -202,26 +202,27 @@ template <int N, int C, int V>
   }
 }
 
-/// All Row columns of X (rows of Row numbers, a multiple of four), in tiles
-/// of eight (two registers of sums for each of p's C numbers), the last
-/// tile the remainder.
-template <int N, int C, int Row>
+/// The first Cols4 columns of X (a multiple of four; rows of Row numbers),
+/// in tiles of eight (two registers of sums for each of p's C numbers), the
+/// last tile the remainder.
+template <int N, int C, int Cols4, int Row>
 [[gnu::target("avx2,fma")]] void chain_solve_avx2(const chain_factor<N, C>& f, double* X) {
-  static_assert(Row % 4 == 0);
-  constexpr int full = Row / 8, rest = Row % 8;
+  static_assert(Cols4 % 4 == 0 && Cols4 <= Row);
+  constexpr int full = Cols4 / 8, rest = Cols4 % 8;
   for (int t = 0; t < full; ++t) chain_solve_tile_avx2<N, C, 2>(f, X, Row, 8 * t);
   if constexpr (rest > 0) chain_solve_tile_avx2<N, C, 1>(f, X, Row, 8 * full);
 }
 #endif
 
 /// X ← M⁻¹·X for X's first Cols columns, X's rows Row numbers long (a
-/// multiple of four, the columns past Cols finite): chain_solve_avx2 (every
-/// column of the rows) where the processor runs it, else chain_solve_blocks.
+/// multiple of four, the columns past Cols finite up to the next multiple
+/// of four): chain_solve_avx2 (the columns up to that multiple) where the
+/// processor runs it, else chain_solve_blocks.
 template <int N, int C, int Cols, int Row>
 FLANGE_INLINE void chain_solve(const chain_factor<N, C>& f, double* X) {
 #ifdef FLANGE_CHAIN_SOLVE_AVX2
   if (cpu_has_avx2_fma) {
-    chain_solve_avx2<N, C, Row>(f, X);
+    chain_solve_avx2<N, C, (Cols + 3) / 4 * 4, Row>(f, X);
     return;
   }
 #endif

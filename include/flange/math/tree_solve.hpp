@@ -332,28 +332,29 @@ template <class Tree, int V, int ldx>
 /// the 16-link chain's jacobian() 4.67 → 4.48 µs, a floating tree of 64 leg
 /// joints 42.4 → 40.6 µs (medians of five runs in turns); every column's
 /// sums are the same either way.
-template <class Tree, int Row>
+template <class Tree, int Cols4, int Row>
 [[gnu::target("avx2,fma")]] void tree_solve_avx2(const double* C, int ldc, const double* inv, double* X) {
-  static_assert(Row % 4 == 0);
-  constexpr int tile = 24, full = Row / tile, rest = Row % tile;
+  static_assert(Cols4 % 4 == 0 && Cols4 <= Row);
+  constexpr int tile = 24, full = Cols4 / tile, rest = Cols4 % tile;
   for (int t = 0; t < full; ++t) tree_solve_tile_avx2<Tree, tile / 4, Row>(C, ldc, inv, X, tile * t);
   if constexpr (rest > 0) tree_solve_tile_avx2<Tree, rest / 4, Row>(C, ldc, inv, X, tile * full);
 }
 #endif
 
-/// X ← M⁻¹·X for X's first Cols columns, X's rows tree_solve_row(Cols)
-/// numbers long: tree_solve_avx2 (every column of the rows) where the
+/// X ← M⁻¹·X for X's first Cols columns, X's rows Row numbers long (at
+/// least tree_solve_row(Cols), the columns past Cols finite up to it):
+/// tree_solve_avx2 (the columns up to tree_solve_row(Cols)) where the
 /// processor runs it, else tree_solve_blocks.
-template <class Tree, int Cols>
+template <class Tree, int Cols, int Row = tree_solve_row(Cols)>
 FLANGE_INLINE void tree_solve(const double* C, int ldc, const double* inv, double* X) {
-  constexpr int row = tree_solve_row(Cols);
+  static_assert(Row % 4 == 0 && tree_solve_row(Cols) <= Row);
 #ifdef FLANGE_TREE_SOLVE_AVX2
   if (cpu_has_avx2_fma) {
-    tree_solve_avx2<Tree, row>(C, ldc, inv, X);
+    tree_solve_avx2<Tree, tree_solve_row(Cols), Row>(C, ldc, inv, X);
     return;
   }
 #endif
-  tree_solve_blocks<Tree, Cols>(C, ldc, inv, X, row);
+  tree_solve_blocks<Tree, Cols>(C, ldc, inv, X, Row);
 }
 
 }  // namespace flange::detail
