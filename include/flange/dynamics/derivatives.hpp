@@ -539,12 +539,13 @@ struct factor_ancestry {
   }();
   static constexpr const auto& up = table.up;
   static constexpr const auto& depth = table.depth;
-  /// Pair p, row by row, of the triangle a ≤ b < depth: (a, b).
-  static consteval std::pair<int, int> pair(int depth, int p) {
-    int a = 0;
-    while (p >= depth - a) p -= depth - a++;
-    return {a, a + p};
-  }
+  /// Pair P, row by row, of the triangle a ≤ b < Depth: (a, b).
+  template <int Depth, int P>
+  static constexpr std::pair<int, int> pair = [] {
+    int a = 0, p = P;
+    while (p >= Depth - a) p -= Depth - a++;
+    return std::pair<int, int>{a, a + p};
+  }();
   /// The updates of the whole factor: Σ over k of depth·(depth + 1)/2.
   static constexpr int updates = [] {
     int u = 0;
@@ -579,7 +580,7 @@ template <class S>
   using anc = factor_ancestry<S>;
   int failed = 0;
   [&]<int... K>(std::integer_sequence<int, K...>) FLANGE_INLINE_LAMBDA {
-    return ([&] FLANGE_INLINE_LAMBDA {
+    return ([&]() FLANGE_INLINE_LAMBDA {
       constexpr int k = NN - 1 - K, depth = anc::depth[k];
       if (!(M(k - 1, k - 1) > tol * yard[k - 1])) [[unlikely]] {
         failed = k;
@@ -593,8 +594,8 @@ template <class S>
       }(std::make_integer_sequence<int, depth>{});
       // Pair P of the triangle a ≤ b < depth, row by row.
       [&]<int... P>(std::integer_sequence<int, P...>) FLANGE_INLINE_LAMBDA {
-        ((M(anc::up[k][anc::pair(depth, P).first], anc::up[k][anc::pair(depth, P).second]) -=
-          c[anc::pair(depth, P).first] * c[anc::pair(depth, P).second]),
+        ((M(anc::up[k][anc::template pair<depth, P>.first], anc::up[k][anc::template pair<depth, P>.second]) -=
+          c[anc::template pair<depth, P>.first] * c[anc::template pair<depth, P>.second]),
          ...);
       }(std::make_integer_sequence<int, depth * (depth + 1) / 2>{});
       return true;
