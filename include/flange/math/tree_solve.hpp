@@ -325,8 +325,8 @@ template <class Tree, int V, int ldx>
     }
 }
 
-/// All Row columns of X (rows of Row numbers, a multiple of four), in tiles
-/// of 24 columns (a row's two sums or a pair's: twelve of AVX2's sixteen
+/// The first Cols4 columns of X (a multiple of four; rows of Row numbers),
+/// in tiles of 24 columns (a row's two sums or a pair's: twelve of AVX2's sixteen
 /// registers, the broadcast factors and a row's load the rest), the last
 /// tile the remainder. Each tile walks the whole tree: against tiles of 16,
 /// the 16-link chain's jacobian() 4.67 → 4.48 µs, a floating tree of 64 leg
