@@ -418,6 +418,7 @@ struct derivative_nodes {
   static constexpr int NL = S::tree.n_links, NN = S::n_v + 1;
   struct table_t {
     std::array<int, NN> link{}, parent{}, vparent{}, rate{}, group{};
+    std::array<int, NN> index{};  ///< its rate's place among its link's
     std::array<bool, NN> ball{};  ///< a ball's rotation node
     std::array<int, NL> last{};
   };
@@ -431,6 +432,7 @@ struct derivative_nodes {
       for (int k = 0; k < nv; ++k, ++n) {
         if (k == ball_from) before_ball = prev;
         r.link[n] = L;
+        r.index[n] = k;
         r.rate[n] = v0 + k;
         r.parent[n] = prev;
         r.vparent[n] = k >= ball_from ? before_ball : prev;
@@ -485,7 +487,7 @@ struct column_parts {
       std::array<bool, nodes::NN> no_ang{}, no_lin{};
     } r;
     for (int n = 1; n < nodes::NN; ++n) {
-      const int L = nodes::table.link[n], k = n - (nodes::table.last[L] - S::table.nv[S::tree.link_joint[L]] + 1);
+      const int L = nodes::table.link[n], k = nodes::table.index[n];
       r.no_ang[n] = (ang[L] >> k) & 1u;
       r.no_lin[n] = (lin[L] >> k) & 1u;
     }
@@ -1196,15 +1198,13 @@ template <class S, bool Articulated>
         return {rate[k], M(k - 1, k - 1), yard[k - 1]};
       const double d = std::sqrt(M(k - 1, k - 1));
       M(k - 1, k - 1) = d;
-      // k's ancestors, nearest first, and row k's entries for them: each
-      // pair's update then reads two lists, no walk up the tree a term.
-      std::array<int, NN> up;
+      // k's ancestors, nearest first (factor_ancestry), and row k's entries
+      // for them: each pair's update reads two lists, no walk up the tree.
+      using anc = factor_ancestry<S>;
+      const auto& up = anc::up[k];
+      const int depth = anc::depth[k];
       std::array<double, NN> c;
-      int depth = 0;
-      for (int i = parent[k]; i != 0; i = parent[i], ++depth) {
-        up[depth] = i - 1;
-        c[depth] = M(k - 1, i - 1) /= d;
-      }
+      for (int a = 0; a < depth; ++a) c[a] = M(k - 1, up[a]) /= d;
       for (int a = 0; a < depth; ++a) {
         double* row = &M(up[a], 0);
         const double ca = c[a];
