@@ -622,6 +622,28 @@ inline constexpr auto derivative_row_rate = [] {
   return r;
 }();
 
+/// The most nodes a tree may have for the passes over its nodes to be
+/// written out node by node (over_nodes): each node's step then compiled
+/// with n a constant, so that its parent, rate and kind are constants and its
+/// pair loops (over its ancestors) unroll. The backward passes always; the
+/// forward ones in the plane alone: in space, written out, they ran slower
+/// for fewer instructions. On larger trees it costs more compile time than
+/// it saves (docs/performance.md, "The Jacobian", has the figures).
+inline constexpr int written_out_nodes = 3;
+
+/// step(n) for the nodes n = 1 … NN − 1, parents first, or with
+/// ChildrenFirst the other way: written out (each n a constant) where
+/// WriteOut and the tree has up to written_out_nodes, else a loop.
+template <int NN, bool ChildrenFirst, bool WriteOut = true, class Step>
+FLANGE_INLINE void over_nodes(Step&& step) {
+  if constexpr (WriteOut && NN - 1 <= written_out_nodes)
+    static_for<NN - 1>([&](auto k) FLANGE_INLINE_LAMBDA { step(ChildrenFirst ? NN - 1 - int(k) : int(k) + 1); });
+  else if constexpr (ChildrenFirst)
+    for (int n = NN - 1; n >= 1; --n) step(n);
+  else
+    for (int n = 1; n < NN; ++n) step(n);
+}
+
 /// The coordinate of each rate where it is the rate's own (q̇ = v: a joint
 /// of one rate, rates in series, a ball's translations), −1 for a ball's
 /// rotation rates, whose quaternion moves with all three.
@@ -806,6 +828,7 @@ template <class S, bool Articulated>
   // Each link's motion at q, densified: E (parent → link), p (its origin in
   // the parent's coordinates); each node's column (link coordinates).
   using G = geometry_t<S>;
+  constexpr bool in_plane = !std::is_same_v<G, space>;  // the passes in a plane (over_nodes)
   using Rot = decltype(G::rotation_of(std::get<0>(link_motions<spatial_algebra, double, true>(scene, q)).E()));
   std::array<Rot, NL> E, R;
   std::array<typename G::lin, NL> p, r;
@@ -848,7 +871,7 @@ template <class S, bool Articulated>
   const spatial<G> zero{G::zero_ang(), G::lin::Zero()};
   vel[0] = acc[0] = zero;
   if constexpr (S::has_gravity) acc[0].l = G::lin_of(scene.model().minus_g);
-  for (int n = 1; n < NN; ++n) {
+  over_nodes<NN, false, in_plane>([&](const int n) FLANGE_INLINE_LAMBDA {
     const int L = node_link[n], P = parent[n], V = vparent[n];
     // A column's part that is zero by type stays zero: no turn of it.
     if (parts.no_ang[n]) s[n] = {G::zero_ang(), rotate(R[L], col[n].l)};
@@ -870,7 +893,7 @@ template <class S, bool Articulated>
       F[n] = {G::zero_ang(), G::lin::Zero()};
       Bc[n] = {G::zero_moment(), G::lin::Zero()};
     }
-  }
+  });
   // What ∂/∂v reads for u: a ball's rotation columns turn with its link
   // while the next ones' u read the velocity before the ball, which adds
   // ½·s × (v_L − v_V) to it; a node of one rate's is u.
@@ -920,7 +943,7 @@ template <class S, bool Articulated>
       if (nodes::table.rate[n] != n - 1) return false;
     return true;
   }();
-  constexpr bool in_space = std::is_same_v<G, space>;
+  constexpr bool in_space = !in_plane;
   constexpr int C = in_space ? 6 : 3, CA = in_space ? 3 : 1;  // numbers, angular ones
   using stack = std::conditional_t<stacked, std::array<std::array<double, NN>, C>, std::array<int, 0>>;
   alignas(32) stack sc, uc, pc;  // s, u (which ∂/∂v reads without balls) and, below, ψ
@@ -936,7 +959,7 @@ template <class S, bool Articulated>
   // below sums them into the composites).
   std::conditional_t<Articulated, std::array<world_inertia<G>, NN>, std::array<int, 0>> own;
   if constexpr (Articulated) own = Ic;
-  for (int n = NN - 1; n >= 1; --n) {
+  over_nodes<NN, true>([&](const int n) FLANGE_INLINE_LAMBDA {
     const int i = rate[n];
     y[n] = Ic[n] * s[n];
     z[n] = Bc[n].transposed_times(s[n]);
@@ -972,7 +995,7 @@ template <class S, bool Articulated>
       Bc[P] += Bc[n];
       F[P] += F[n];
     }
-  }
+  });
   // The joints' own forces Q by dual numbers: their values into b, their
   // derivatives kept for below. A force of the joint's own q, v and the time
   // (an axis law, a drive of t) in those three directions; a drive that reads
@@ -1229,7 +1252,7 @@ template <class S, bool Articulated>
     for (int n = 1; n < NN; ++n) vdot[rate[n]] = b[n - 1];
   std::array<spatial<G>, NN> da;
   da[0] = {G::zero_ang(), G::lin::Zero()};
-  for (int n = 1; n < NN; ++n) {
+  over_nodes<NN, false, in_plane>([&](const int n) FLANGE_INLINE_LAMBDA {
     const int P = parent[n], V = vparent[n];
     da[n] = da[P] + s[n] * b[n - 1];
     if (!translating[V]) psi[n] = motion_cross(s[n], acc[V] + da[V]) - motion_cross(u[n], vel[V]);
@@ -1239,13 +1262,13 @@ template <class S, bool Articulated>
       const auto pn = numbers(psi[n]);
       for (int c = 0; c < C; ++c) pc[c][n] = pn[c];
     }
-  }
+  });
   // Up the tree again: the subtree's wrench at v̇, F_n = F⁰_n + I_n·δa_n + Y_n
   // with Y_n = Σ over n's children c of (I_c·s_c·v̇_c + Y_c), and the pairs'
   // ∂/∂q; then the joints' own.
   std::array<spatial<G>, NN> Y;
   for (int n = 0; n < NN; ++n) Y[n] = {G::zero_ang(), G::lin::Zero()};
-  for (int n = NN - 1; n >= 1; --n) {
+  over_nodes<NN, true>([&](const int n) FLANGE_INLINE_LAMBDA {
     const int i = rate[n];
     F[n] += Ic[n] * da[n] + Y[n];
     // With loads, ∂s_n/∂q_j = s_j × s_n turns their share: −(s_j × s_n)ᵀ·W_n.
@@ -1288,7 +1311,7 @@ template <class S, bool Articulated>
     out(n - 1, i) += dQ[n][0];
     out(n - 1, N + i) += dQ[n][1];
     out(n - 1, 2 * N) = dQ[n][2];
-  }
+  });
   for (int k = 0; k < reading::count; ++k)
     for (int c = 0; c <= 2 * N; ++c) out(last[reading::link[k]] - 1, c) += dQ_read[k].d[c];
   if constexpr (local) out.template leftCols<2 * N + 1>() += dL;
