@@ -817,7 +817,7 @@ template <class S, bool Articulated>
   constexpr auto node_link = nodes::table.link;
   constexpr auto last = nodes::table.last;
   constexpr auto translating = translating_nodes<S>;
-  constexpr auto parts = column_parts<S>::table;
+  static constexpr const auto& parts = column_parts<S>::table;  // static: the lambdas below take it uncaptured
   constexpr bool balls = [] {
     for (int L = 1; L < NL; ++L)
       if (ball_links<S>[L]) return true;
