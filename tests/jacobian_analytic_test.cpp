@@ -52,6 +52,12 @@ TEST_CASE("the analytic Jacobian equals the dual-number Jacobian on chains") {
   agree(models::chain<2, models::runtime_axes>(p2), rng);
   auto p1 = models::random_chain_params<1>(rng);
   agree(models::chain<1, models::runtime_axes>(p1), rng);
+  // Up to three nodes every pass is written out node by node in the plane
+  // (over_nodes), only the backward ones in space (the chains above).
+  auto q2 = models::random_chain_params<2>(rng);
+  agree(models::chain<2, models::planar_axes>(q2), rng);
+  auto q3 = models::random_chain_params<3>(rng);
+  agree(models::chain<3, models::planar_axes>(q3), rng);
 }
 
 TEST_CASE("the analytic Jacobian equals the dual-number Jacobian on random trees") {
