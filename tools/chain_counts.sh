@@ -4,7 +4,8 @@
 # the Release flags against this tree's headers:
 #   tools/chain_counts.sh N runtime|typed|planar default,articulated,other [CXXFLAGS...]
 # (also articulated_unrolled and articulated_shared: the articulated body with
-# its per-link steps forced into one form)
+# its per-link steps forced into one form; and jacobian: the exact Jacobian,
+# jacobian(), in place of a derivative)
 # Prints one line per algorithm, "chain <axes> N=<n> <algorithm>
 # instructions=<i> ns=<t>": t is the median of 3 runs of 3·10⁵ calls, i the
 # difference between runs of 2000 and 1000 calls, so that start-up does not
@@ -15,7 +16,8 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 exe=$(mktemp)
 trap 'rm -f "$exe"' EXIT
 eigen=$(pkg-config --cflags eigen3 2>/dev/null || echo -I/usr/include/eigen3)
-g++ -std=c++20 -O3 -DNDEBUG "$@" -DPROBE_N="$n" -DPROBE_AXES="$axes" -I"$here/include" $eigen \
+jac=; [[ ,$algs, == *,jacobian,* ]] && jac=-DPROBE_JACOBIAN
+g++ -std=c++20 -O3 -DNDEBUG "$@" $jac -DPROBE_N="$n" -DPROBE_AXES="$axes" -I"$here/include" $eigen \
   "$here/tools/probes/chain_derivative.cpp" -o "$exe"
 for alg in ${algs//,/ }; do
   count() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$exe" "$1" "$alg" 2>&1 | awk '/Collected/ { print $4 }'; }

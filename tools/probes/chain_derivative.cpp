@@ -5,15 +5,19 @@
 //   chain_derivative K ALGORITHM
 //
 // ALGORITHM: default (the System's derivative), articulated, other (the
-// algorithm the cost model did not pick), or articulated_unrolled and
+// algorithm the cost model did not pick), articulated_unrolled and
 // articulated_shared (the articulated body with its per-link steps forced
-// into one form, dynamics/articulated_body.hpp: aba_steps).
+// into one form, dynamics/articulated_body.hpp: aba_steps), or jacobian
+// (not a derivative: the exact Jacobian, simulate/jacobian.hpp's jacobian()).
 //
 // Compile-time choices: -DPROBE_N=<links> and -DPROBE_AXES=runtime|typed|planar,
 // or tree: the scale benchmark's floating tree, models::legged<4, N / 4>.
 #include <flange/dynamics/other_algorithm.hpp>
 #include <flange/flange.hpp>
 #include <flange/models/legged.hpp>
+#ifdef PROBE_JACOBIAN
+#include <flange/simulate/jacobian.hpp>
+#endif
 
 #include <cmath>
 #include <cstdio>
@@ -71,6 +75,9 @@ int main(int argc, char** argv) {
   const double* v = x.data() + S::n_q;
   double* vd = dx.data() + S::n_q;
   double sum = 0;
+#ifdef PROBE_JACOBIAN
+  jacobian_matrix<S> J = make_jacobian_matrix<S>();
+#endif
   for (long i = 0; i < k; ++i) {
     asm volatile("" : : "r"(x.data()) : "memory");
     if (!std::strcmp(alg, "articulated")) accelerations_articulated_body(c, 0.0, q, v, vd);
@@ -79,6 +86,12 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(alg, "articulated_shared"))
       accelerations_articulated_body<aba_steps::shared>(c, 0.0, q, v, vd);
     else if (!std::strcmp(alg, "other")) accelerations_other(c, 0.0, q, v, vd);
+#ifdef PROBE_JACOBIAN  // compiled only when asked for: a long chain's Jacobian takes a minute
+    else if (!std::strcmp(alg, "jacobian")) {
+      jacobian(c, 0.0, x, J);
+      dx[S::n_q] = J(S::n_q, 0);
+    }
+#endif
     else c(x, dx, 0.0);
     asm volatile("" : : "r"(dx.data()) : "memory");
     sum += dx[S::n_q];
