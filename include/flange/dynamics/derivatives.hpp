@@ -147,7 +147,8 @@ FLANGE_INLINE double trace_of(const Mat3d& T) { return T(0, 0) + T(1, 1) + T(2, 
 FLANGE_INLINE double trace_of(double T) { return T; }
 
 /// A spatial vector in the passes' frame (link 1's at q, or the World's
-/// axes at link 1's origin where a force element acts on a link): motion
+/// axes at link 1's origin where the loads on links come from dual numbers
+/// in the links' motions, local_loads): motion
 /// (angular a, linear l) or force (torque a, force l), in 3-D (G = space)
 /// or in the plane (G = plane<K>).
 template <class G>
