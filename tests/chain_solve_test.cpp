@@ -4,7 +4,8 @@
 // long double of M_ij = s_iᵀ·(A_max(i,j) + … + A_N)·s_j built from the same
 // columns and inertias: chains of 1, 5, 13 and 30 nodes, in space (six
 // numbers a node) and in the plane (three), with as many columns as the
-// Jacobian's 2N + 1; and a pivot that fails.
+// Jacobian's 2N + 1 and with one (chain_solve_column); and a pivot that
+// fails, in the whole factor and a node at a time.
 #include <catch2/catch.hpp>
 #include <flange/math/chain_solve.hpp>
 #include <flange/math/tree_solve.hpp>
@@ -118,6 +119,13 @@ void check_chain(std::mt19937& rng) {
     for (int r = 0; r < N; ++r)
       if (detail::tree_solve_row(first) < ld) CHECK(X[r * ld + ld - 1] == 7);
   }
+  {
+    // One column, the scalar sweeps (the Jacobian's v̇).
+    std::vector<double> x(N), b(N);
+    for (int r = 0; r < N; ++r) x[r] = b[r] = B[r * ld];
+    detail::chain_solve_column(f, x.data());
+    CHECK(solve_error(M, 1, 1, b, x) < tol);
+  }
 #ifdef FLANGE_CHAIN_SOLVE_AVX2
   if (detail::cpu_has_avx2_fma) {
     std::vector<double> X = B;
@@ -174,4 +182,12 @@ TEST_CASE("chain_solve: the factor's pivots are the Cholesky factor's, and one t
   CHECK_FALSE(f.factor(chain.s, [&](int k) { return chain.A[k]; }, diag.data(), 1e-12));
   CHECK(f.failed == N - 1);
   CHECK(f.failed_d == 0);
+  // A node at a time (as the Jacobian's pass carries it), the factor goes
+  // on past the pivot that failed in finite numbers and keeps that one.
+  detail::chain_factor<N, 6> g;
+  g.start();
+  for (int k = N - 1; k >= 0; --k) g.node(k, chain.s[k], chain.A[k], diag[k], 1e-12);
+  CHECK(g.failed == N - 1);
+  CHECK(g.failed_d == 0);
+  for (int k = 0; k < N; ++k) CHECK(std::isfinite(g.inv[k]));
 }

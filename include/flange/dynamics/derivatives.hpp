@@ -985,10 +985,18 @@ template <class S, bool Articulated>
         uc[c][n] = un[c];
       }
     }
-  // The bodies' own inertias, for M's articulated-body factor (the pass
-  // below sums them into the composites).
+  // M's factor on a long chain (Articulated): its articulated-body factor
+  // (math/chain_solve.hpp), from the columns and the bodies' own inertias
+  // (the pass below sums them into the composites), no entry of M formed.
+  // The pass carries it a node at a time: alone, the factor runs at the
+  // latency of its chain of divisions, which the pass's own products hide.
+  constexpr double tol = pivot_tolerance<N, double>();
   std::conditional_t<Articulated, std::array<world_inertia<G>, NN>, std::array<int, 0>> own;
-  if constexpr (Articulated) own = Ic;
+  std::conditional_t<Articulated, chain_factor<N, C>, std::array<int, 0>> chain_M;
+  if constexpr (Articulated) {
+    own = Ic;
+    chain_M.start();
+  }
   over_nodes<NN, true>([&](const int n) FLANGE_INLINE_LAMBDA {
     const int i = rate[n];
     y[n] = Ic[n] * s[n];
@@ -1020,6 +1028,7 @@ template <class S, bool Articulated>
       }
       for (int j = parent[n]; j != 0; j = parent[j]) out(j - 1, N + i) = s[j].dot(Gv);
     }
+    if constexpr (Articulated) chain_M.node(n - 1, numbers(s[n]), G::matrix_of(own[n]), yard[n - 1], tol);
     if (const int P = parent[n]; P != 0) {
       Ic[P] += Ic[n];
       Bc[P] += Bc[n];
@@ -1215,21 +1224,17 @@ template <class S, bool Articulated>
     }
   }
 
-  // M's factor: on a long chain (Articulated) its articulated-body factor
-  // (math/chain_solve.hpp, from the bodies' own inertias and the columns:
-  // no entry of M is formed); else M = Cᵀ·C (Featherstone's LTL
+  // M's factor: on a long chain (Articulated) the articulated-body factor
+  // the pass up the tree carried; else M = Cᵀ·C (Featherstone's LTL
   // factorization, leaves first: C has the tree's zeros, where a root-first
   // factor would join siblings). Either way a pivot at or below
   // pivot_tolerance of its yardstick stops it (a joint that moves nothing
   // with inertia, or whose motion repeats others').
-  constexpr double tol = pivot_tolerance<N, double>();
-  std::conditional_t<Articulated, chain_factor<N, C>, std::array<int, 0>> chain_M;
   std::array<double, NN> inv;  // 1 / C(k − 1, k − 1), the Cholesky factor's
   if constexpr (Articulated) {
-    std::array<std::array<double, C>, N> cols;
-    for (int k = 0; k < N; ++k) cols[k] = numbers(s[k + 1]);
-    if (!chain_M.factor(cols, [&](int k) { return G::matrix_of(own[k + 1]); }, yard.data(), tol)) [[unlikely]]
+    if (chain_M.failed >= 0) [[unlikely]]
       return {rate[chain_M.failed + 1], chain_M.failed_d, yard[chain_M.failed]};
+    chain_M.finish();
   } else if constexpr (chain) {
     // Every node above k: dense loops the compiler vectorizes.
     std::array<double, N> c;
@@ -1273,7 +1278,7 @@ template <class S, bool Articulated>
   // v̇ = M⁻¹·(Q − τ⁰); then each node's acceleration changes by δa_n = δa_P +
   // s_n·v̇_n, and ψ_n = s_n × a_V − u_n × v_V follows (V: vparent).
   if constexpr (Articulated) {
-    chain_solve_block<N, C, 1>(chain_M, b.data(), 1, 0);
+    chain_solve_column(chain_M, b.data());
   } else {
     for (int k = 1; k < NN; ++k) inv[k] = 1 / M(k - 1, k - 1);
     tree_solve_block<tree, 1>(M.data(), N, inv.data(), b.data(), 1, 0);

@@ -61,28 +61,52 @@ struct chain_factor {
   /// pivot passed.
   template <class Own>
   bool factor(const std::array<std::array<double, C>, N>& cols, Own A, const double* diag, double tol) {
-    using Mat = Eigen::Matrix<double, C, C>;
-    using Vec = Eigen::Matrix<double, C, 1>;
-    s = cols;
-    Mat I = Mat::Zero();
+    start();
     for (int k = N - 1; k >= 0; --k) {
-      I += A(k);
-      const Eigen::Map<const Vec> sk(s[k].data());
-      const Vec u = I * sk;
-      const double d = sk.dot(u);
-      if (!(d > tol * diag[k])) [[unlikely]] {
+      node(k, cols[k], A(k), diag[k], tol);
+      if (failed >= 0) [[unlikely]]
+        return false;
+    }
+    finish();
+    return true;
+  }
+
+  /// The same factor a node at a time, for a caller's own pass from the
+  /// last node up to carry: start(), node(k, …) for k = N − 1 … 0 in turn,
+  /// then finish() where failed < 0. Each node waits on the one before it
+  /// (a product, a sum and a division), so that the factor alone runs at
+  /// that latency; inside a pass with work of its own the processor runs
+  /// the two side by side. A pivot that fails is kept in failed and
+  /// failed_d (the first from node N up), and the factor goes on as if it
+  /// had been 1, in finite numbers.
+  FLANGE_INLINE void start() {
+    I.setZero();
+    failed = -1;
+  }
+  template <class Own>
+  FLANGE_INLINE void node(int k, const std::array<double, C>& col, const Own& A, double diag, double tol) {
+    using Vec = Eigen::Matrix<double, C, 1>;
+    s[k] = col;
+    I += A;
+    const Eigen::Map<const Vec> sk(s[k].data());
+    const Vec u = I * sk;
+    double d = sk.dot(u);
+    if (!(d > tol * diag)) [[unlikely]] {
+      if (failed < 0) {
         failed = k;
         failed_d = d;
-        return false;
       }
-      const double e = 1 / d;
-      inv[k] = e;
-      for (int c = 0; c < C; ++c) {
-        U[k][c] = u[c];
-        Ud[k][c] = u[c] * e;
-      }
-      I.noalias() -= (u * e) * u.transpose();
+      d = 1;
     }
+    const double e = 1 / d;
+    inv[k] = e;
+    for (int c = 0; c < C; ++c) {
+      U[k][c] = u[c];
+      Ud[k][c] = u[c] * e;
+    }
+    I.noalias() -= (u * e) * u.transpose();
+  }
+  FLANGE_INLINE void finish() {
     for (int k = 0; k < N; ++k) {
       double a = 0, b = 0;
       for (int c = 0; c < C; ++c) {
@@ -92,8 +116,10 @@ struct chain_factor {
       sU[k] = a;
       Us[k] = b;
     }
-    return true;
   }
+
+ private:
+  Eigen::Matrix<double, C, C> I;  ///< the articulated inertia of the nodes factored so far
 };
 
 /// X ← M⁻¹·X for columns c0 … c0 + W − 1 of X (rows of ldx numbers, row
@@ -118,6 +144,42 @@ FLANGE_INLINE void chain_solve_block(const chain_factor<N, C>& f, double* X, int
     for (int c = 0; c < C; ++c) x -= f.Ud[k][c] * a[c];
     row(k) = x;
     for (int c = 0; c < C; ++c) a[c] += f.s[k][c] * x;
+  }
+}
+
+/// x ← M⁻¹·x for one column x (node k's number at x[k − 1]), as
+/// chain_solve_tile_avx2 sweeps: each node's sums hold the nodes beyond its
+/// neighbour, whose term comes in last through sU (Us), so that a node
+/// waits on its neighbour's one number (a product and a sum) rather than on
+/// C sums in a row. Scalar, without fused multiply-adds: the same numbers
+/// in every build.
+template <int N, int C>
+FLANGE_INLINE void chain_solve_column(const chain_factor<N, C>& f, double* x) {
+  auto dot = [](const std::array<double, C>& m, const std::array<double, C>& y) FLANGE_INLINE_LAMBDA {
+    double e = m[0] * y[0], o = m[1] * y[1];
+    for (int c = 2; c < C; c += 2) e += m[c] * y[c];
+    for (int c = 3; c < C; c += 2) o += m[c] * y[c];
+    return e + o;
+  };
+  std::array<double, C> p{};
+  double w = 0;
+  for (int k = N - 1; k >= 0; --k) {  // p: nodes k + 3 … N; w: node k + 2's
+    double e = x[k] - dot(f.s[k], p);
+    if (k + 1 < N) {
+      for (int c = 0; c < C; ++c) p[c] += f.U[k + 1][c] * w;
+      e -= f.sU[k] * w;
+    }
+    x[k] = w = e * f.inv[k];
+  }
+  std::array<double, C>& a = p;
+  a = {};
+  for (int k = 0; k < N; ++k) {  // a: nodes 1 … k − 1 (indices below k − 1); w: index k − 1's
+    double e = x[k] - dot(f.Ud[k], a);
+    if (k > 0) {
+      for (int c = 0; c < C; ++c) a[c] += f.s[k - 1][c] * w;
+      e -= f.Us[k] * w;
+    }
+    x[k] = w = e;
   }
 }
 
