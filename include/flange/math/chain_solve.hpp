@@ -18,14 +18,16 @@
 // a long chain's 2N + 1 columns of ∂v̇/∂x this way (docs/performance.md,
 // "The Jacobian"). D_k is the pivot M's leaves-first Cholesky factor would
 // meet at node k, and a pivot at or below tol of M_kk stops the factor as it
-// stops that one.
+// stops that one. The factor is whole (factor) or a node at a time (start,
+// node, finish), for a pass from the last node up to carry.
 //
-// Two kernels, the same sums: chain_solve_blocks, Eigen's rows of up to
-// eight columns (SSE2 on x86-64 unless the build asks for more), and on
-// x86-64 where the processor has AVX2 and FMA (detail/cpu.hpp)
+// Two kernels for many columns, the same sums: chain_solve_blocks, Eigen's
+// rows of up to eight columns (SSE2 on x86-64 unless the build asks for
+// more), and on x86-64 where the processor has AVX2 and FMA (detail/cpu.hpp)
 // chain_solve_avx2, eight columns at a time in registers with each
 // multiply-add fused: a result differs from the other's in its last bits.
 // chain_solve picks. Define FLANGE_NO_AVX2 to keep the first everywhere.
+// One column: chain_solve_column, scalar.
 #pragma once
 #include <array>
 
@@ -151,8 +153,9 @@ FLANGE_INLINE void chain_solve_block(const chain_factor<N, C>& f, double* X, int
 /// chain_solve_tile_avx2 sweeps: each node's sums hold the nodes beyond its
 /// neighbour, whose term comes in last through sU (Us), so that a node
 /// waits on its neighbour's one number (a product and a sum) rather than on
-/// C sums in a row. Scalar, without fused multiply-adds: the same numbers
-/// in every build.
+/// C sums in a row. Scalar, so that it gives the numbers of the build it is
+/// compiled in (the Jacobian's passes: the same in both of theirs, neither
+/// of which fuses a multiply-add).
 template <int N, int C>
 FLANGE_INLINE void chain_solve_column(const chain_factor<N, C>& f, double* x) {
   auto dot = [](const std::array<double, C>& m, const std::array<double, C>& y) FLANGE_INLINE_LAMBDA {
