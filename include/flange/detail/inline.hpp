@@ -11,7 +11,8 @@
 // tests/chain_test.cpp at -O1 98 → 73 s of compiler, examples/robot_arm.cpp
 // at -O3 15.8 → 14.3 s). The tests build so (all but no_heap_test; the
 // test inline.same_numbers holds the two builds to the same bits); the
-// examples and the benchmarks do not.
+// examples do not, nor do the benchmarks unless configured with
+// -DFLANGE_BENCHMARK_TIMING=OFF (as the README's test command builds them).
 #pragma once
 
 #ifdef FLANGE_NO_FORCED_INLINE
