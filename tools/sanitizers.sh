@@ -201,7 +201,10 @@ run_fuzz_targets() {
 
 # Everything at once (CI): the three builds under one make jobserver, so
 # that two compilers run until the last unit of all three is done (built one
-# after the other, each build ended on one core while the other idled); then
+# after the other, each build ended on one core while the other idled). The
+# fuzz build starts first, its longest units first (fuzz/CMakeLists.txt):
+# started last, they ended the build on one core (scenes_legged.cpp alone
+# for its last 80 s); then
 # the ASan programs and TSan's, two at a time; then the fuzz targets side by
 # side. The makefiles are CMake's (`make -C dir target`), each build's output
 # in its build.log.
@@ -213,7 +216,7 @@ build_all() {
   say "building ${#asan_targets[@]} ASan + UBSan test programs, the TSan program and the fuzz targets with $cxx"
   local mk=$out/all.mk
   {
-    printf 'all: asan tsan fuzz\n'
+    printf 'all: fuzz asan tsan\n'
     printf 'asan:\n\t+$(MAKE) --no-print-directory -C %s selected_tests >%s/build.log 2>&1\n' "$out/asan" "$out/asan"
     printf 'tsan:\n\t+$(MAKE) --no-print-directory -C %s thread_safety_test >%s/build.log 2>&1\n' "$out/tsan" "$out/tsan"
     printf 'fuzz:\n\t+$(MAKE) --no-print-directory -C %s fuzzers >%s/build.log 2>&1\n' "$out/fuzz" "$out/fuzz"
