@@ -1,4 +1,4 @@
-// Linked into every benchmark program of a build configured with
+// Linked, through flange_bench_common, into every benchmark program of a build configured with
 // -DFLANGE_BENCHMARK_TIMING=OFF (benchmarks/CMakeLists.txt): such a build
 // checks that the benchmarks run and print their lines, and its times are
 // not the library's, which this says before the program prints anything.
