@@ -110,7 +110,7 @@ TEST_CASE("a loop scene's derivative, its Jacobian and its projected stepping al
           (void)sink;
         }) == 0);
   jacobian_matrix<std::remove_cvref_t<decltype(fb)>> J;
-  CHECK(detail::jacobian_loops(fb, 0.0, x, J, nullptr));
+  CHECK(detail::jacobian_loops(fb, 0.0, x, J));
 }
 
 TEST_CASE("a ball bouncing on the ground (a Contact) allocates nothing, in its derivative, its Jacobian and through simulate") {

@@ -38,7 +38,7 @@ void measure(const char* name, int n, const S& s, State x) {
   bool implicit = false;
   if constexpr (flange::detail::has_loops<S>) {
     flange::jacobian_matrix<S> J;
-    implicit = flange::detail::jacobian_loops(s, 0.0, x, J, nullptr);
+    implicit = flange::detail::jacobian_loops(s, 0.0, x, J);
   }
   if constexpr (WithDual && (analytic || flange::detail::has_loops<S>)) {
     const auto J = flange::jacobian(s, 0.0, x), Jd = flange::jacobian_dual(s, 0.0, x);

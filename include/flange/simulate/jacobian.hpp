@@ -9,9 +9,15 @@
 // also there for any scene).
 //
 // jacobian_finite_difference is the usual stand-in, central differences, for
-// comparison: 2·(n + 1) derivative evaluations and about 1e-10 relative
-// error, against one dual-number evaluation carrying n + 1 directions (or a
-// few, of at most 16 directions each, for a large scene).
+// comparison: 2·n derivative evaluations and about 1e-10 relative error,
+// against one dual-number evaluation carrying n directions (or a few, of at
+// most 16 directions each, for a large scene).
+//
+// Each function has two forms: (scene, t, x, J) for ∂f/∂x alone, and
+// (scene, t, x, J, dfdt) that also writes ∂f/∂t into *dfdt, as rosenbrock4
+// needs. The time is then one direction more of the dual numbers (the robot
+// arm's Jacobian, two states: 51 against 73 ns), so ask for it only where it
+// is used; given a null dfdt the second form computes it and drops it.
 //
 // Inputs take part when they are generic in their scalar (a lambda of
 // (auto t) or (auto t, const auto& x)); an input written for double is
@@ -68,7 +74,7 @@ FLANGE_INLINE jacobian_matrix<S> made_by(Into&& into) {
 }  // namespace detail
 
 /// The most directions one dual-number evaluation carries. A scene with more
-/// (n_state + 1 of them) is differentiated in passes of equal width, each
+/// (n_state of them, n_state + 1 with the time) is differentiated in passes of equal width, each
 /// recomputing the values: a 34-state scene in 3 passes of 12 directions,
 /// 39 value-and-derivative lanes against 36 in one pass, while the
 /// derivative over dual<double, 12> compiles in 98 s against 122 s over
@@ -81,20 +87,24 @@ namespace detail {
 constexpr int jacobian_passes(int n) { return (n + jacobian_max_directions - 1) / jacobian_max_directions; }
 constexpr int jacobian_width(int n) { return (n + jacobian_passes(n) - 1) / jacobian_passes(n); }
 
-/// The passes of dual numbers that differentiate in the n states and the
-/// time (directions 0 … n − 1 the state, n the time), jacobian_width of them
-/// a pass: body(xd, td, first) for each, where direction first + l is lane l
-/// of xd and td and the others are constants. Its results' lane l goes to
-/// column first + l, or to ∂/∂t when that is n (lane_columns). Both, and
-/// the lambdas jacobian_dual gives them, are always inlined: a tiny scene's
-/// Jacobian is a few of its derivatives, and through the calls the paper's
-/// arm took 200 ns against 90.
-template <int n, class State, class Body>
+/// The dual numbers of the passes below: n states, and the time WithTime.
+template <int n, bool WithTime>
+using jacobian_dual_t = dual<double, jacobian_width(n + WithTime)>;
+
+/// The passes of dual numbers that differentiate in the n states and, if
+/// WithTime, the time (directions 0 … n − 1 the state, n the time),
+/// jacobian_width of them a pass: body(xd, td, first) for each, where
+/// direction first + l is lane l of xd and td and the others are constants.
+/// Its results' lane l goes to column first + l, or to ∂/∂t when that is n
+/// (lane_columns). Both, and the lambdas jacobian_dual gives them, are
+/// always inlined: a tiny scene's Jacobian is a few of its derivatives, and
+/// through the calls the paper's arm took 200 ns against 90.
+template <int n, bool WithTime, class State, class Body>
 FLANGE_INLINE void dual_passes(const State& x, double t, Body&& body) {
-  constexpr int W = jacobian_width(n + 1);
-  using D = dual<double, W>;
+  using D = jacobian_dual_t<n, WithTime>;
+  constexpr int W = jacobian_width(n + WithTime);
   std::array<D, n> xd;
-  for (int first = 0; first <= n; first += W) {
+  for (int first = 0; first < n + WithTime; first += W) {
     auto seed = [&](double value, int direction) FLANGE_INLINE_LAMBDA {
       return direction >= first && direction < first + W ? D::variable(value, direction - first) : D(value);
     };
@@ -104,33 +114,54 @@ FLANGE_INLINE void dual_passes(const State& x, double t, Body&& body) {
 }
 /// For each lane l of the pass from `first` that is a direction, f(l, c)
 /// with c its column (n: the time).
-template <int n, class F>
+template <int n, bool WithTime, class F>
 FLANGE_INLINE void lane_columns(int first, F&& f) {
-  constexpr int W = jacobian_width(n + 1);
-  for (int l = 0; l < W && first + l <= n; ++l) f(l, first + l);
+  constexpr int W = jacobian_width(n + WithTime);
+  for (int l = 0; l < W && first + l < n + WithTime; ++l) f(l, first + l);
 }
-}  // namespace detail
 
-/// ∂f/∂x at (t, x) into J, and ∂f/∂t into *dfdt when given, by dual numbers.
-template <class S, class State>
-void jacobian_dual(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
-                   Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+/// jacobian_dual's work: ∂f/∂x into J and, if WithTime, ∂f/∂t into *dfdt
+/// when it is given.
+template <bool WithTime, class S, class State>
+void jacobian_dual_into(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
+                        Eigen::Matrix<double, S::n_state, 1>* dfdt) {
   S::require_state_size(x);
   constexpr int n = S::n_state;
-  std::array<dual<double, detail::jacobian_width(n + 1)>, n> fd;
-  detail::dual_passes<n>(x, t, [&](const auto& xd, const auto& td, int first) FLANGE_INLINE_LAMBDA {
+  std::array<jacobian_dual_t<n, WithTime>, n> fd;
+  dual_passes<n, WithTime>(x, t, [&](const auto& xd, const auto& td, int first) FLANGE_INLINE_LAMBDA {
     scene(xd, fd, td);
-    detail::lane_columns<n>(first, [&](int l, int c) FLANGE_INLINE_LAMBDA {
+    lane_columns<n, WithTime>(first, [&](int l, int c) FLANGE_INLINE_LAMBDA {
       for (int i = 0; i < n; ++i)
         if (c < n) J(i, c) = fd[i].d[l];
         else if (dfdt) (*dfdt)(i) = fd[i].d[l];
     });
   });
 }
+}  // namespace detail
 
-/// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given, by dual numbers.
+/// ∂f/∂x at (t, x) into J, by dual numbers.
 template <class S, class State>
-jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+void jacobian_dual(const S& scene, double t, const State& x, jacobian_matrix<S>& J) {
+  detail::jacobian_dual_into<false>(scene, t, x, J, nullptr);
+}
+
+/// ∂f/∂x at (t, x) into J, and ∂f/∂t into *dfdt (when not null), by dual
+/// numbers.
+template <class S, class State>
+void jacobian_dual(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
+                   Eigen::Matrix<double, S::n_state, 1>* dfdt) {
+  detail::jacobian_dual_into<true>(scene, t, x, J, dfdt);
+}
+
+/// ∂f/∂x at (t, x) by dual numbers.
+template <class S, class State>
+jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x) {
+  return detail::made_by<S>([&](jacobian_matrix<S>& J) { jacobian_dual(scene, t, x, J); });
+}
+
+/// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt (when not null), by dual numbers.
+template <class S, class State>
+jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt) {
   return detail::made_by<S>([&](jacobian_matrix<S>& J) { jacobian_dual(scene, t, x, J, dfdt); });
 }
 
@@ -269,14 +300,15 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
 /// derivatives at the solution's v̇ and λ held fixed: inverse dynamics, the
 /// joints' forces and the loops' kinematics in dual numbers (no mass matrix,
 /// no factorization, no loop solve in them), then one double solve with
-/// n_state + 1 right-hand sides. Only where the loop solve was the exact one
+/// n_state right-hand sides (n_state + 1 WithTime). Only where the loop solve was the exact one
 /// (every constraint row kept, no division damped: dynamics/loop_solve.hpp);
 /// false otherwise, and nothing written (a redundant constraint or a
 /// singular position, which jacobian() then differentiates by dual numbers,
-/// the damping and the rows left out included).
-template <class S, class State>
-bool jacobian_loops(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
-                    Eigen::Matrix<double, S::n_state, 1>* dfdt) {
+/// the damping and the rows left out included). WithTime: ∂f/∂t too, into
+/// *dfdt when it is given.
+template <bool WithTime, class S, class State>
+bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
+                         Eigen::Matrix<double, S::n_state, 1>* dfdt) {
   static_assert(has_loops<S>);
   S::require_state_size(x);
   using A = algebra_t<S>;
@@ -304,11 +336,11 @@ bool jacobian_loops(const S& scene, double t, const State& x, jacobian_matrix<S>
   // through its general triangular kernels: twice the cost of everything
   // else here).
   Eigen::PartialPivLU<Eigen::Matrix<double, nk, nk>> lu;
-  constexpr int W = jacobian_width(n + 1);
-  using D = dual<double, W>;
+  constexpr int W = jacobian_width(n + WithTime);
+  using D = jacobian_dual_t<n, WithTime>;
   std::array<D, nv> ad;
   for (int i = 0; i < nv; ++i) ad[i] = D(a[i]);
-  dual_passes<n>(xs, t, [&](const auto& xd, const D& td, int first) {
+  dual_passes<n, WithTime>(xs, t, [&](const auto& xd, const D& td, int first) {
     const D* qd = xd.data();
     const D* vd = xd.data() + nq;
     const auto xv = state_view(scene, qd, vd);
@@ -356,7 +388,7 @@ bool jacobian_loops(const S& scene, double t, const State& x, jacobian_matrix<S>
     // q̇'s rows: the joints' rates, differentiated as they are written.
     std::array<D, nq> qdot;
     joint_rates(scene, qd, vd, qdot.data());
-    lane_columns<n>(first, [&](int l, int c) {
+    lane_columns<n, WithTime>(first, [&](int l, int c) {
       if (c < n) {
         for (int i = 0; i < nq; ++i) J(i, c) = qdot[i].d[l];
         for (int i = 0; i < nv; ++i) J(nq + i, c) = d(i, l);
@@ -368,27 +400,58 @@ bool jacobian_loops(const S& scene, double t, const State& x, jacobian_matrix<S>
   });
   return true;
 }
-}  // namespace detail
 
-/// ∂f/∂x at (t, x) into J, and ∂f/∂t into *dfdt when given: analytic where
-/// dynamics/derivatives.hpp covers the scene (jacobian_takes_analytic); for a
-/// scene with loops by implicit differentiation where the loop solve is exact
-/// (detail::jacobian_loops); else by dual numbers.
+/// ∂f/∂x at (t, x) into J by the implicit differentiation above.
 template <class S, class State>
-void jacobian(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
-              Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
-  if constexpr (detail::jacobian_takes_analytic<S>()) {
-    detail::jacobian_analytic(scene, t, x, J, dfdt);
-  } else if constexpr (detail::has_loops<S>) {
-    if (!detail::jacobian_loops(scene, t, x, J, dfdt)) jacobian_dual(scene, t, x, J, dfdt);
-  } else {
-    jacobian_dual(scene, t, x, J, dfdt);
-  }
+bool jacobian_loops(const S& scene, double t, const State& x, jacobian_matrix<S>& J) {
+  return jacobian_loops_into<false>(scene, t, x, J, nullptr);
 }
 
-/// The same, returned.
+/// The same, and ∂f/∂t into *dfdt (when not null).
 template <class S, class State>
-jacobian_matrix<S> jacobian(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt = nullptr) {
+bool jacobian_loops(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
+                    Eigen::Matrix<double, S::n_state, 1>* dfdt) {
+  return jacobian_loops_into<true>(scene, t, x, J, dfdt);
+}
+
+/// jacobian's choice of path; WithTime: ∂f/∂t too, into *dfdt when given.
+template <bool WithTime, class S, class State>
+void jacobian_into(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
+                   Eigen::Matrix<double, S::n_state, 1>* dfdt) {
+  if constexpr (jacobian_takes_analytic<S>()) {
+    jacobian_analytic(scene, t, x, J, dfdt);
+  } else if constexpr (has_loops<S>) {
+    if (!jacobian_loops_into<WithTime>(scene, t, x, J, dfdt)) jacobian_dual_into<WithTime>(scene, t, x, J, dfdt);
+  } else {
+    jacobian_dual_into<WithTime>(scene, t, x, J, dfdt);
+  }
+}
+}  // namespace detail
+
+/// ∂f/∂x at (t, x) into J: analytic where dynamics/derivatives.hpp covers the
+/// scene (jacobian_takes_analytic); for a scene with loops by implicit
+/// differentiation where the loop solve is exact (detail::jacobian_loops);
+/// else by dual numbers.
+template <class S, class State>
+void jacobian(const S& scene, double t, const State& x, jacobian_matrix<S>& J) {
+  detail::jacobian_into<false>(scene, t, x, J, nullptr);
+}
+
+/// The same, and ∂f/∂t into *dfdt (when not null).
+template <class S, class State>
+void jacobian(const S& scene, double t, const State& x, jacobian_matrix<S>& J, Eigen::Matrix<double, S::n_state, 1>* dfdt) {
+  detail::jacobian_into<true>(scene, t, x, J, dfdt);
+}
+
+/// ∂f/∂x at (t, x), returned.
+template <class S, class State>
+jacobian_matrix<S> jacobian(const S& scene, double t, const State& x) {
+  return detail::made_by<S>([&](jacobian_matrix<S>& J) { jacobian(scene, t, x, J); });
+}
+
+/// The same, and ∂f/∂t into *dfdt (when not null).
+template <class S, class State>
+jacobian_matrix<S> jacobian(const S& scene, double t, const State& x, Eigen::Matrix<double, S::n_state, 1>* dfdt) {
   return detail::made_by<S>([&](jacobian_matrix<S>& J) { jacobian(scene, t, x, J, dfdt); });
 }
 
