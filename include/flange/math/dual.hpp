@@ -239,7 +239,8 @@ struct dual {
 // Made and copied as a double is: Eigen's matrices of dual numbers
 // (RequireInitialization = 0 below) make and copy them without a constructor
 // call.
-static_assert(std::is_trivially_default_constructible_v<dual<double, 3>> && std::is_trivially_copyable_v<dual<double, 3>>);
+static_assert(std::is_trivially_default_constructible_v<dual<double, 3>> &&
+              std::is_trivially_copyable_v<dual<double, 3>>);
 
 }  // namespace flange
 

@@ -15,9 +15,9 @@
 //
 // Each function has two forms: (scene, t, x, J) for ∂f/∂x alone, and
 // (scene, t, x, J, dfdt) that also writes ∂f/∂t into *dfdt, as rosenbrock4
-// needs. The time is then one direction more of the dual numbers (the robot
-// arm's Jacobian, two states: 51 against 73 ns), so ask for it only where it
-// is used; given a null dfdt the second form computes it and drops it.
+// needs. The time is then one direction more of the dual numbers (the paper's
+// arm, two states: three directions instead of two), so ask for it only where
+// it is used; given a null dfdt the second form computes it and drops it.
 //
 // Inputs take part when they are generic in their scalar (a lambda of
 // (auto t) or (auto t, const auto& x)); an input written for double is
@@ -74,8 +74,8 @@ FLANGE_INLINE jacobian_matrix<S> made_by(Into&& into) {
 }  // namespace detail
 
 /// The most directions one dual-number evaluation carries. A scene with more
-/// (n_state of them, n_state + 1 with the time) is differentiated in passes of equal width, each
-/// recomputing the values: a 34-state scene in 3 passes of 12 directions,
+/// (n_state of them, n_state + 1 with the time) is differentiated in passes
+/// of equal width, each recomputing the values: a 34-state scene in 3 passes of 12 directions,
 /// 39 value-and-derivative lanes against 36 in one pass, while the
 /// derivative over dual<double, 12> compiles in 98 s against 122 s over
 /// dual<double, 35> (its code is about as large: GCC unrolls the narrower
@@ -300,12 +300,12 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
 /// derivatives at the solution's v̇ and λ held fixed: inverse dynamics, the
 /// joints' forces and the loops' kinematics in dual numbers (no mass matrix,
 /// no factorization, no loop solve in them), then one double solve with
-/// n_state right-hand sides (n_state + 1 WithTime). Only where the loop solve was the exact one
-/// (every constraint row kept, no division damped: dynamics/loop_solve.hpp);
-/// false otherwise, and nothing written (a redundant constraint or a
-/// singular position, which jacobian() then differentiates by dual numbers,
-/// the damping and the rows left out included). WithTime: ∂f/∂t too, into
-/// *dfdt when it is given.
+/// n_state right-hand sides (n_state + 1 WithTime). Only where the loop
+/// solve was the exact one (every constraint row kept, no division damped:
+/// dynamics/loop_solve.hpp); false otherwise, and nothing written (a
+/// redundant constraint or a singular position, which jacobian() then
+/// differentiates by dual numbers, the damping and the rows left out
+/// included). WithTime: ∂f/∂t too, into *dfdt when it is given.
 template <bool WithTime, class S, class State>
 bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
                          Eigen::Matrix<double, S::n_state, 1>* dfdt) {
@@ -439,7 +439,8 @@ void jacobian(const S& scene, double t, const State& x, jacobian_matrix<S>& J) {
 
 /// The same, and ∂f/∂t into *dfdt (when not null).
 template <class S, class State>
-void jacobian(const S& scene, double t, const State& x, jacobian_matrix<S>& J, Eigen::Matrix<double, S::n_state, 1>* dfdt) {
+void jacobian(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
+              Eigen::Matrix<double, S::n_state, 1>* dfdt) {
   detail::jacobian_into<true>(scene, t, x, J, dfdt);
 }
 
