@@ -300,7 +300,9 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
 /// derivatives at the solution's v̇ and λ held fixed: inverse dynamics, the
 /// joints' forces and the loops' kinematics in dual numbers (no mass matrix,
 /// no factorization, no loop solve in them), then one double solve with
-/// n_state right-hand sides (n_state + 1 WithTime). Only where the loop
+/// n_state right-hand sides (n_state + 1 WithTime), by the blocks of the
+/// matrix (the LDLᵀ factors of M and of G·M⁻¹·Gᵀ; false where either
+/// fails its pivot test, which an exact loop solve rules out). Only where the loop
 /// solve was the exact one (every constraint row kept, no division damped:
 /// dynamics/loop_solve.hpp); false otherwise, and nothing written (a
 /// redundant constraint or a singular position, which jacobian() then
@@ -312,7 +314,7 @@ bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matr
   static_assert(has_loops<S>);
   S::require_state_size(x);
   using A = algebra_t<S>;
-  constexpr int nq = S::n_q, nv = S::n_v, m = n_constraints<S>(), n = S::n_state, nk = nv + m;
+  constexpr int nq = S::n_q, nv = S::n_v, m = n_constraints<S>(), n = S::n_state;
   std::array<double, n> xs;
   for (int i = 0; i < n; ++i) xs[i] = x[i];
   const double* q = xs.data();
@@ -322,25 +324,27 @@ bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matr
   bool exact = false;
   accelerations_and_constraint_forces(scene, t, q, v, a.data(), lambda.data(), &exact);
   if (!exact) return false;
-  // K = [M −Gᵀ; G 0]: M here, G from the first pass's values below.
-  Eigen::Matrix<double, nk, nk> K;
+  // [M −Gᵀ; G 0] by its blocks: M = L·D·Lᵀ here; from the first pass's
+  // values of G, B = L⁻¹·Gᵀ and the Schur complement S = G·M⁻¹·Gᵀ =
+  // Bᵀ·D⁻¹·B, factored the same way. The loop solve kept every row
+  // undamped, so S is as well conditioned as its rows (each at least 100
+  // times the damping away from depending on the rows before it).
+  Eigen::Matrix<double, nv, nv> M;
+  ldlt_pivots<nv, double> fM;
   {
-    Eigen::Matrix<double, nv, nv> M;
     std::array<double, nv> scale;
     mass_matrix<A>(scene, algebra_motions<A>(scene, q), M, scale.data());
-    K.template topLeftCorner<nv, nv>() = M;
-    K.template bottomRightCorner<m, m>().setZero();
+    if (ldlt_factor<nv>(M, fM, scale.data(), mass_factor<S>{}).index >= 0) return false;
   }
-  // K's LU with partial pivoting, applied to each pass's right-hand sides a
-  // column at a time by plain loops (Eigen's solve of a few columns goes
-  // through its general triangular kernels: twice the cost of everything
-  // else here).
-  Eigen::PartialPivLU<Eigen::Matrix<double, nk, nk>> lu;
-  constexpr int W = jacobian_width(n + WithTime);
+  std::array<std::array<double, nv>, m> B;  // B[c]: L⁻¹ times row c of G
+  Eigen::Matrix<double, m, m> Sc;
+  ldlt_pivots<m, double> fS;
+  bool factored = false;
   using D = jacobian_dual_t<n, WithTime>;
   std::array<D, nv> ad;
   for (int i = 0; i < nv; ++i) ad[i] = D(a[i]);
   dual_passes<n, WithTime>(xs, t, [&](const auto& xd, const D& td, int first) {
+    if (first > 0 && !factored) return;
     const D* qd = xd.data();
     const D* vd = xd.data() + nq;
     const auto xv = state_view(scene, qd, vd);
@@ -357,48 +361,62 @@ bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matr
     }
     const auto k = loop_kinematics_at<S>(scene, pose, vd);
     if (first == 0) {
+      std::array<double, m> yard;
+      for (int c = 0; c < m; ++c) {
+        std::array<double, nv> g;
+        for (int i = 0; i < nv; ++i) g[i] = k.G(c, i).v;
+        ldlt_forward<nv>(M, g.data(), B[c].data(), mass_factor<S>{});
+      }
       for (int c = 0; c < m; ++c)
-        for (int i = 0; i < nv; ++i) {
-          K(nv + c, i) = k.G(c, i).v;
-          K(i, nv + c) = -k.G(c, i).v;
+        for (int e = 0; e <= c; ++e) {
+          double x = 0;
+          for (int i = 0; i < nv; ++i) x += B[c][i] * B[e][i] * fM.inv_d[i];
+          Sc(c, e) = Sc(e, c) = x;
         }
-      lu.compute(K);
+      for (int c = 0; c < m; ++c) yard[c] = Sc(c, c);
+      factored = ldlt_factor<m>(Sc, fS, yard.data()).index < 0;
+      if (!factored) return;
     }
-    Eigen::Matrix<double, nk, W> rhs;
+    std::array<D, m> C;
     for (int c = 0; c < m; ++c) {
-      D C = k.bias[c];
+      C[c] = k.bias[c];
       for (int i = 0; i < nv; ++i) {
         F[i] -= k.G(c, i) * lambda[c];
-        C += k.G(c, i) * a[i];
+        C[c] += k.G(c, i) * a[i];
       }
-      for (int l = 0; l < W; ++l) rhs(nv + c, l) = -C.d[l];
-    }
-    for (int i = 0; i < nv; ++i)
-      for (int l = 0; l < W; ++l) rhs(i, l) = -F[i].d[l];
-    const auto& LU = lu.matrixLU();
-    const auto& perm = lu.permutationP().indices();
-    Eigen::Matrix<double, nk, W> d;
-    for (int r = 0; r < nk; ++r) d.row(perm[r]) = rhs.row(r);
-    for (int r = 1; r < nk; ++r)
-      for (int c = 0; c < r; ++c) d.row(r) -= LU(r, c) * d.row(c);
-    for (int r = nk - 1; r >= 0; --r) {
-      for (int c = r + 1; c < nk; ++c) d.row(r) -= LU(r, c) * d.row(c);
-      d.row(r) /= LU(r, r);
     }
     // q̇'s rows: the joints' rates, differentiated as they are written.
     std::array<D, nq> qdot;
     joint_rates(scene, qd, vd, qdot.data());
+    // Lane l's column: M·x − Gᵀ·μ = −∂F, G·x = −∂C by the blocks, x =
+    // M⁻¹·(−∂F + Gᵀ·μ) where S·μ = −∂C + G·M⁻¹·∂F.
     lane_columns<n, WithTime>(first, [&](int l, int c) {
+      std::array<double, nv> y, dv;
+      std::array<double, m> r, mu;
+      for (int i = 0; i < nv; ++i) y[i] = -F[i].d[l];
+      ldlt_forward<nv>(M, y.data(), y.data(), mass_factor<S>{});  // y = L⁻¹·(−∂F)
+      for (int e = 0; e < m; ++e) {
+        double x = -C[e].d[l];
+        for (int i = 0; i < nv; ++i) x -= B[e][i] * fM.inv_d[i] * y[i];
+        r[e] = x;
+      }
+      ldlt_solve<m>(Sc, fS, r.data(), mu.data());
+      for (int i = 0; i < nv; ++i) {
+        double x = y[i];
+        for (int e = 0; e < m; ++e) x += B[e][i] * mu[e];
+        dv[i] = x * fM.inv_d[i];
+      }
+      ldlt_backward<nv>(M, dv.data(), dv.data(), mass_factor<S>{});
       if (c < n) {
         for (int i = 0; i < nq; ++i) J(i, c) = qdot[i].d[l];
-        for (int i = 0; i < nv; ++i) J(nq + i, c) = d(i, l);
+        for (int i = 0; i < nv; ++i) J(nq + i, c) = dv[i];
       } else if (dfdt) {
         for (int i = 0; i < nq; ++i) (*dfdt)(i) = qdot[i].d[l];
-        for (int i = 0; i < nv; ++i) (*dfdt)(nq + i) = d(i, l);
+        for (int i = 0; i < nv; ++i) (*dfdt)(nq + i) = dv[i];
       }
     });
   });
-  return true;
+  return factored;
 }
 
 /// ∂f/∂x at (t, x) into J by the implicit differentiation above.
