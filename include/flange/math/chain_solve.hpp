@@ -268,14 +268,18 @@ template <int N, int C, int V>
 }
 
 /// The first Cols4 columns of X (a multiple of four; rows of Row numbers),
-/// in tiles of eight (two registers of sums for each of p's C numbers), the
-/// last tile the remainder.
+/// in tiles of eight (two registers of sums for each of p's C numbers), or
+/// of twelve in the plane (C = 3: three registers each, nine of sums in all,
+/// which the sixteen hold with the tile's x and w; three chains of products
+/// in flight rather than two hide more of each node's wait on its
+/// neighbour), the last tile the remainder.
 template <int N, int C, int Cols4, int Row>
 [[gnu::target("avx2,fma")]] void chain_solve_avx2(const chain_factor<N, C>& f, double* X) {
   static_assert(Cols4 % 4 == 0 && Cols4 <= Row);
-  constexpr int full = Cols4 / 8, rest = Cols4 % 8;
-  for (int t = 0; t < full; ++t) chain_solve_tile_avx2<N, C, 2>(f, X, Row, 8 * t);
-  if constexpr (rest > 0) chain_solve_tile_avx2<N, C, 1>(f, X, Row, 8 * full);
+  constexpr int T = C <= 3 ? 12 : 8;
+  constexpr int full = Cols4 / T, rest = Cols4 % T;
+  for (int t = 0; t < full; ++t) chain_solve_tile_avx2<N, C, T / 4>(f, X, Row, T * t);
+  if constexpr (rest > 0) chain_solve_tile_avx2<N, C, rest / 4>(f, X, Row, T * full);
 }
 #endif
 
