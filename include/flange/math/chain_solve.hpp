@@ -24,8 +24,9 @@
 // Two kernels for many columns, the same sums: chain_solve_blocks, Eigen's
 // rows of up to eight columns (SSE2 on x86-64 unless the build asks for
 // more), and on x86-64 where the processor has AVX2 and FMA (detail/cpu.hpp)
-// chain_solve_avx2, eight columns at a time in registers with each
-// multiply-add fused: a result differs from the other's in its last bits.
+// chain_solve_avx2, eight columns at a time (twelve in the plane) in
+// registers with each multiply-add fused: a result differs from the other's
+// in its last bits.
 // chain_solve picks. Define FLANGE_NO_AVX2 to keep the first everywhere.
 // One column: chain_solve_column, scalar.
 #pragma once
