@@ -762,26 +762,31 @@ struct element_links {
 /// twist at the passes' fixed point, world coordinates), then its twist V
 /// there changed by (δω, δv). Rw: link → world; r: its origin from the fixed
 /// point; o: the fixed point from the World's origin.
-template <class D>
+template <class D, int b>
 link_pose<D, velocity_in::link> local_lanes(const Mat3d& Rw, const Vec3d& r, const Vec3d& o,
-                                            const spatial<space>& V, int b) {
+                                            const spatial<space>& V) {
+  // ∂/∂ε_θk: e_k × (each column of Rw, and r), turns[k][j] (j = 3: r).
+  std::array<std::array<Vec3d, 4>, 3> turns;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3d e = Vec3d::Unit(k);
+    for (int j = 0; j < 3; ++j) turns[k][j] = cross(e, Vec3d(Rw.col(j)));
+    turns[k][3] = cross(e, r);
+  }
+  // Each made whole (D::with_lanes), not a lane at a time.
   Mat3<D> Rd;
   Vec3<D> rd, w, vo;
   for (int i = 0; i < 3; ++i) {
-    rd[i] = D(r[i]);
+    rd[i] = D::with_lanes(r[i], [&](int l) {
+      const int k = l - b;
+      return k >= 0 && k < 3 ? turns[k][3][i] : k == 3 + i ? 1.0 : 0.0;
+    });
     w[i] = D::variable(V.a[i], b + 6 + i);
     vo[i] = D::variable(V.l[i], b + 9 + i);
-    rd[i].d[b + 3 + i] = 1;
-    for (int j = 0; j < 3; ++j) Rd(i, j) = D(Rw(i, j));
-  }
-  for (int k = 0; k < 3; ++k) {
-    // ∂/∂ε_θk: e_k × (each column of Rw, and r)
-    const Vec3d e = Vec3d::Unit(k), er = cross(e, r);
-    for (int j = 0; j < 3; ++j) {
-      const Vec3d c = cross(e, Vec3d(Rw.col(j)));
-      for (int i = 0; i < 3; ++i) Rd(i, j).d[b + k] = c[i];
-    }
-    for (int i = 0; i < 3; ++i) rd[i].d[b + k] = er[i];
+    for (int j = 0; j < 3; ++j)
+      Rd(i, j) = D::with_lanes(Rw(i, j), [&](int l) {
+        const int k = l - b;
+        return k >= 0 && k < 3 ? turns[k][j][i] : 0.0;
+      });
   }
   link_pose<D, velocity_in::link> P;
   P.R = Rd.transpose();
@@ -1060,13 +1065,16 @@ template <class S, bool Articulated>
         constexpr int qa = LI::joint_type::quaternion_at;
         for (int k = 0; k < qa; ++k) qw[LI::q + k] = DW::variable(q[LI::q + k], LI::v + k);
         const double* Q = q + LI::q + qa;
-        for (int k = 0; k < 4; ++k) qw[LI::q + qa + k] = DW(Q[k]);
+        double dQc[3][4];
         for (int c = 0; c < 3; ++c) {
           const double e[3] = {double(c == 0), double(c == 1), double(c == 2)};
-          double dQc[4];
-          quaternion::rate(Q, e, dQc);
-          for (int k = 0; k < 4; ++k) qw[LI::q + qa + k].d[LI::v + qa + c] = dQc[k];
+          quaternion::rate(Q, e, dQc[c]);
         }
+        for (int k = 0; k < 4; ++k)
+          qw[LI::q + qa + k] = DW::with_lanes(Q[k], [&](int l) {
+            const int c = l - (LI::v + qa);
+            return c >= 0 && c < 3 ? dQc[c][k] : 0.0;
+          });
       } else {
         for (int k = 0; k < LI::joint_type::nq; ++k) qw[LI::q + k] = DW::variable(q[LI::q + k], LI::v + k);
       }
@@ -1134,10 +1142,10 @@ template <class S, bool Articulated>
             constexpr auto links = EL::frame_links;
             using D = dual<double, lanes>;
             std::array<link_pose<D, velocity_in::link>, m> lp;
-            for (int b = 0; b < m; ++b) {
-              const int L = EL::link[b];
-              lp[b] = local_lanes<D>(R[L], r[L], r1, vel[last[L]], 12 * b);
-            }
+            static_for<m>([&](auto k) {
+              constexpr int L = EL::link[k];
+              lp[k] = local_lanes<D, 12 * int(k)>(R[L], r[L], r1, vel[last[L]]);
+            });
             // Adds f and n (a wrench at the fixed point, world coordinates)
             // on link l: its value to l's own, its derivatives carried to
             // the state's directions.

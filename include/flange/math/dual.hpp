@@ -75,11 +75,26 @@ struct dual {
   template <class U>
     requires std::is_arithmetic_v<U>
   constexpr dual(U value) : v(T(value)), d{} {}  // NOLINT
-  /// x with ∂x/∂x_k = 1 (seeding direction k).
-  static dual variable(T value, int k) {
-    dual r(value);
-    r.d[k] = T(1);
+  /// A number with derivative lane(k) in direction k, its lanes made a
+  /// chunk at a time in registers. (A lane written alone into a chunk
+  /// written before, the chunk read whole soon after: the read waits until
+  /// the write reaches the cache. The spatial arm's PD laws cost its
+  /// Jacobian 95 ns that way, 25 ns made whole.)
+  template <class F>
+  static dual with_lanes(T value, F&& lane) {
+    dual r;
+    r.v = value;
+    if constexpr (C == N) {
+      for (int k = 0; k < N; ++k) r.d.c[k] = lane(k);
+    } else {
+      for (int j = 0; j < C; ++j)
+        r.d.c[j] = typename detail::lanes<T, N>::chunk{lane(2 * j), 2 * j + 1 < N ? lane(2 * j + 1) : T(0)};
+    }
     return r;
+  }
+  /// x with ∂x/∂x_k = 1 (seeding direction k), made whole (with_lanes).
+  static dual variable(T value, int k) {
+    return with_lanes(value, [k](int j) { return T(j == k); });
   }
   explicit operator double() const { return static_cast<double>(v); }
   explicit operator long double() const { return static_cast<long double>(v); }
