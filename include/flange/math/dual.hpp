@@ -3,7 +3,6 @@
 // exact (no finite-difference step to choose). Eigen sees dual as a scalar type
 // through its NumTraits.
 #pragma once
-#include <array>
 #include <cmath>
 #include <limits>
 #include <ostream>
@@ -31,32 +30,31 @@ namespace detail {
 /// dual-number Jacobian 256 → 199 ns, the spatial arm's, whose PD laws'
 /// forces are dual numbers, 601 → 501 ns: docs/performance.md, "The
 /// Jacobian").
-/// Read and written a number at a time by index.
-template <class T, int N, bool Chunked = (N >= 3)>
+/// Read and written a number at a time by index. One or two derivatives
+/// stay a number each: as one chunk the paper's arm (two states) took
+/// longer (docs/performance.md, "The Jacobian").
+template <class T, bool Chunked>
+struct chunk_of {
+  using type = T;
+  static constexpr int width = 1;
+};
+template <class T>
+struct chunk_of<T, true> {
+  typedef T type __attribute__((vector_size(2 * sizeof(T))));
+  static constexpr int width = 2;
+};
+template <class T, int N>
 struct lanes {
-  static constexpr int chunks = (N + 1) / 2;
-  typedef T chunk __attribute__((vector_size(2 * sizeof(T))));
+  using chunk_type = chunk_of<T, (N >= 3)>;
+  using chunk = typename chunk_type::type;
+  static constexpr int chunks = (N + chunk_type::width - 1) / chunk_type::width;
   chunk c[chunks];
-  T& operator[](int k) { return reinterpret_cast<T*>(c)[k]; }
-  const T& operator[](int k) const { return reinterpret_cast<const T*>(c)[k]; }
+  T& operator[](int k) { return begin()[k]; }
+  const T& operator[](int k) const { return begin()[k]; }
   T* begin() { return reinterpret_cast<T*>(c); }
   T* end() { return begin() + N; }
   const T* begin() const { return reinterpret_cast<const T*>(c); }
   const T* end() const { return begin() + N; }
-};
-/// One or two derivatives: a number each (the paper's arm, two states:
-/// its dual-number Jacobian took 71 ns as one chunk against 52 ns).
-template <class T, int N>
-struct lanes<T, N, false> {
-  static constexpr int chunks = N;
-  using chunk = T;
-  chunk c[N];
-  T& operator[](int k) { return c[k]; }
-  const T& operator[](int k) const { return c[k]; }
-  T* begin() { return c; }
-  T* end() { return c + N; }
-  const T* begin() const { return c; }
-  const T* end() const { return c + N; }
 };
 }  // namespace detail
 

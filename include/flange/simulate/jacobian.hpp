@@ -301,11 +301,11 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
 /// joints' forces and the loops' kinematics in dual numbers (no mass matrix,
 /// no factorization, no loop solve in them), then one double solve with
 /// n_state right-hand sides (n_state + 1 WithTime), by the blocks of the
-/// matrix (the LDLᵀ factors of M and of G·M⁻¹·Gᵀ; false where either
-/// fails its pivot test, which an exact loop solve rules out). Only where the loop
-/// solve was the exact one (every constraint row kept, no division damped:
-/// dynamics/loop_solve.hpp); false otherwise, and nothing written (a
-/// redundant constraint or a singular position, which jacobian() then
+/// matrix (the LDLᵀ factors of M and of G·M⁻¹·Gᵀ; false where either fails
+/// its pivot test, which an exact loop solve rules out). Only where the
+/// loop solve was the exact one (every constraint row kept, no division
+/// damped: dynamics/loop_solve.hpp); false otherwise, and nothing written
+/// (a redundant constraint or a singular position, which jacobian() then
 /// differentiates by dual numbers, the damping and the rows left out
 /// included). WithTime: ∂f/∂t too, into *dfdt when it is given.
 template <bool WithTime, class S, class State>
