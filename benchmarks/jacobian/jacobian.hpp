@@ -5,7 +5,8 @@
 //   jacobian <scene> N=<n> derivative_ns=<x> jacobian_ns=<y> ratio=<y/x> [dual_ns=<z>] [analytic_ns=<w>] path=<analytic|implicit|dual>
 //
 // analytic_ns: for a scene the analytic derivatives cover but jacobian()
-// takes dual numbers for (one link with force elements), their time.
+// takes dual numbers for (one rate, or one link with force elements), their
+// time.
 // implicit: a scene with loops, differentiated through its constrained
 // system where the loop solve is exact at x (detail::jacobian_loops).
 #pragma once

@@ -167,17 +167,19 @@ jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen
 
 namespace detail {
 /// Whether jacobian() takes the analytic derivatives: wherever they apply,
-/// but for a scene of one link with force elements, whose loads' dual
-/// numbers and passes cost more than dual numbers
-/// through its derivative: the paper's arm 157 against 86 ns, a ball on the
-/// ground 5.8 against 3.5 µs (build/benchmarks/jacobian's analytic_ns and
+/// but for a scene of one rate, or of one link with force elements, where
+/// the passes' fixed cost (and the loads' dual numbers) exceed dual numbers
+/// through the derivative: the one-link chain of a run-time axis 109
+/// against 85 ns, the paper's arm 93 against 29 ns, a ball on the ground 2.1
+/// against 1.6 µs; a free body without loads (six rates) is the other way
+/// round, 0.74 against 1.24 µs (build/benchmarks/jacobian's analytic_ns and
 /// dual_ns; docs/performance.md, "The Jacobian").
 template <class S>
 constexpr bool jacobian_takes_analytic() {
   if constexpr (!analytic_derivatives<S>()) {
     return false;
   } else {
-    return S::tree.n_links > 2 || !has_link_loads<S>();
+    return S::n_v > 1 && (S::tree.n_links > 2 || !has_link_loads<S>());
   }
 }
 
