@@ -570,11 +570,17 @@ struct factor_ancestry {
 /// it the code would grow past what it saves.
 inline constexpr int unrolled_factor_updates = 600;
 
-/// Whether acceleration_derivatives factors a tree's M written out
-/// (factor_ancestry) rather than in loops that walk its ancestors.
+/// Whether acceleration_derivatives factors M written out (factor_ancestry)
+/// rather than in loops: a tree's, which would walk its ancestors, and a
+/// chain's from four nodes on, whose dense loops are mostly their own
+/// overhead at these sizes (the planar 7-link chain 560 → 499 ns a
+/// Jacobian, the chain of joints of rates in series, nine nodes, 1,821 →
+/// 1,573 ns). On fewer nodes the call costs more than the loops (the gantry
+/// crane 71 against 80 ns; docs/performance.md, "The Jacobian").
 template <class S>
 constexpr bool unrolled_factor() {
-  return factor_ancestry<S>::updates <= unrolled_factor_updates;
+  return factor_ancestry<S>::updates <= unrolled_factor_updates &&
+         (!derivative_nodes<S>::chain || S::n_v >= 4);
 }
 
 /// M = Cᵀ·C in place, leaves first (Featherstone's LTL: C has the tree's
@@ -1243,7 +1249,7 @@ template <class S, bool Articulated>
     if (chain_M.failed >= 0) [[unlikely]]
       return {rate[chain_M.failed + 1], chain_M.failed_d, yard[chain_M.failed]};
     chain_M.finish();
-  } else if constexpr (chain) {
+  } else if constexpr (chain && !unrolled_factor<S>()) {
     // Every node above k: dense loops the compiler vectorizes.
     std::array<double, N> c;
     for (int k = N - 1; k >= 0; --k) {
