@@ -169,8 +169,8 @@ namespace detail {
 /// Whether jacobian() takes the analytic derivatives: wherever they apply,
 /// but for a scene of one rate, or of one link with force elements, where
 /// the passes' fixed cost (and the loads' dual numbers) exceed dual numbers
-/// through the derivative: the one-link chain of a run-time axis 109
-/// against 85 ns, the paper's arm 93 against 29 ns, a ball on the ground 2.1
+/// through the derivative: the one-link chain of a run-time axis 113
+/// against 86 ns, the paper's arm 93 against 29 ns, a ball on the ground 2.1
 /// against 1.6 µs; a free body without loads (six rates) is the other way
 /// round, 0.74 against 1.24 µs (build/benchmarks/jacobian's analytic_ns and
 /// dual_ns; docs/performance.md, "The Jacobian").
