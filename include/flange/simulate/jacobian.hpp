@@ -24,7 +24,9 @@
 // evaluated at the time's value and counts as constant in x.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <concepts>
 #include <cstddef>
 #include <limits>
 #include <type_traits>
@@ -166,6 +168,21 @@ jacobian_matrix<S> jacobian_dual(const S& scene, double t, const State& x, Eigen
 }
 
 namespace detail {
+/// x's numbers in one array: x's own where it keeps them in one (data(), as
+/// the derivative reads them: a std::array, a std::vector, an Eigen vector),
+/// else copied into `copy`. Not copied where they need not be: the copy's
+/// stores, read at once by the passes, held the crane's Jacobian up by 40
+/// ns for 36 more instructions (108 against 70 ns; docs/performance.md).
+template <class S, class State>
+FLANGE_INLINE const double* state_numbers(const State& x, std::array<double, S::n_state>& copy) {
+  if constexpr (requires { { x.data() } -> std::convertible_to<const double*>; }) {
+    return x.data();
+  } else {
+    for (int i = 0; i < S::n_state; ++i) copy[i] = x[i];
+    return copy.data();
+  }
+}
+
 /// Whether jacobian() takes the analytic derivatives: wherever they apply,
 /// but for a scene of one rate, or of one link with force elements, where
 /// the passes' fixed cost (and the loads' dual numbers) exceed dual numbers
@@ -191,17 +208,18 @@ void jacobian_analytic(const S& scene, double t, const State& x, jacobian_matrix
   static_assert(analytic_derivatives<S>());
   S::require_state_size(x);
   constexpr int nq = S::n_q, nv = S::n_v;
-  std::array<double, S::n_state> xs;
-  for (int i = 0; i < S::n_state; ++i) xs[i] = x[i];
+  std::array<double, S::n_state> copy;
+  const double* const xs = state_numbers<S>(x, copy);
   // On a 32-byte boundary, so that the solve's four-number reads of its rows
   // never straddle two cache lines (math/tree_solve.hpp).
   alignas(32) detail::derivative_rows<S> d;
-  if (const auto p = detail::acceleration_derivatives(scene, t, xs.data(), xs.data() + nq, d); p.index >= 0) {
+  if (const auto p = detail::acceleration_derivatives(scene, t, xs, xs + nq, d); p.index >= 0) {
     // M is singular here: the derivative says why (a state that is not
     // finite, or the joint whose pivot failed), in the scene's own words.
-    std::array<double, S::n_state> f;
-    scene(xs, f, t);
-    detail::singular_mass_matrix<S>(p, t, xs.data(), xs.data() + nq);
+    typename S::state_type xa, f;
+    std::copy_n(xs, S::n_state, xa.begin());
+    scene(xa, f, t);
+    detail::singular_mass_matrix<S>(p, t, xs, xs + nq);
   }
   // J's entries by their place in its (column-major) numbers, n_state a
   // column whether its size is fixed or set at run time.
@@ -255,8 +273,8 @@ void jacobian_analytic(const S& scene, double t, const State& x, jacobian_matrix
     using LI = detail::link_info<S, L>;
     if constexpr (detail::ball_links<S>[L]) {
       constexpr int qa = LI::joint_type::quaternion_at, qQ = LI::q + qa, vw = LI::v + qa;
-      const double* Q = xs.data() + qQ;
-      const double* w = xs.data() + nq + vw;
+      const double* Q = xs + qQ;
+      const double* w = xs + nq + vw;
       for (int m = 0; m < 4; ++m) {
         const double e[4] = {double(m == 0), double(m == 1), double(m == 2), double(m == 3)};
         double c[4];
@@ -317,10 +335,10 @@ bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matr
   S::require_state_size(x);
   using A = algebra_t<S>;
   constexpr int nq = S::n_q, nv = S::n_v, m = n_constraints<S>(), n = S::n_state;
-  std::array<double, n> xs;
-  for (int i = 0; i < n; ++i) xs[i] = x[i];
-  const double* q = xs.data();
-  const double* v = xs.data() + nq;
+  std::array<double, n> copy;
+  const double* const xs = state_numbers<S>(x, copy);
+  const double* q = xs;
+  const double* v = xs + nq;
   std::array<double, nv> a;
   std::array<double, m> lambda;
   bool exact = false;
@@ -345,7 +363,7 @@ bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matr
   using D = jacobian_dual_t<n, WithTime>;
   std::array<D, nv> ad;
   for (int i = 0; i < nv; ++i) ad[i] = D(a[i]);
-  dual_passes<n, WithTime>(xs, t, [&](const auto& xd, const D& td, int first) {
+  dual_passes<n, WithTime>(x, t, [&](const auto& xd, const D& td, int first) {
     if (first > 0 && !factored) return;
     const D* qd = xd.data();
     const D* vd = xd.data() + nq;
