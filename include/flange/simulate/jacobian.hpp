@@ -33,6 +33,7 @@
 #include <utility>
 
 #include "flange/dynamics/derivatives.hpp"
+#include "flange/math/place_transposed.hpp"
 #include "flange/math/quaternion.hpp"
 #include "flange/math/dual.hpp"
 #include "flange/simulate/system.hpp"
@@ -183,6 +184,16 @@ FLANGE_INLINE const double* state_numbers(const State& x, std::array<double, S::
   }
 }
 
+/// The column of J that column c of acceleration_derivatives' rows goes to:
+/// rate c's coordinate (none, −1, for a ball's turns, which the quaternion's
+/// columns take) for c < n_v, rate c − n_v's column after.
+template <class S>
+inline constexpr std::array<int, 2 * S::n_v> derivative_column_place = [] {
+  std::array<int, 2 * S::n_v> c{};
+  for (int k = 0; k < S::n_v; ++k) c[k] = rate_coordinate<S>[k], c[S::n_v + k] = S::n_q + k;
+  return c;
+}();
+
 /// Whether jacobian() takes the analytic derivatives: wherever they apply,
 /// but for a scene of one rate, or of one link with force elements, where
 /// the passes' fixed cost (and the loads' dual numbers) exceed dual numbers
@@ -233,35 +244,12 @@ void jacobian_analytic(const S& scene, double t, const State& x, jacobian_matrix
   else
     for (int c = 0; c < S::n_state; ++c) std::fill_n(&at(0, c), nq, 0.0);
   // v̇'s rows: ∂/∂v, and ∂/∂q where a coordinate is its rate's (a joint of
-  // one rate, rates in series, a ball's translations). d's rows are J's
-  // columns: copied four rows at a time, so that J's columns (1 KB apart at
-  // 64 rates) take four numbers at a visit and d's rows are read along (64
-  // links: 80 against 67 µs, docs/performance.md).
+  // one rate, rates in series, a ball's translations): d's rows turned into
+  // J's columns (math/place_transposed.hpp).
   constexpr auto row = detail::derivative_row_rate<S>;
   constexpr auto coordinate = detail::rate_coordinate<S>;
-  // Where rate r is row r and coordinate r (a tree of one-rate joints in
-  // rate order: every chain), the places are known without the tables.
-  constexpr bool in_order = [] {
-    for (int r = 0; r < nv; ++r)
-      if (detail::derivative_row_rate<S>[r] != r || detail::rate_coordinate<S>[r] != r) return false;
-    return true;
-  }();
-  auto copy_rows = [&](int r0, auto width) FLANGE_INLINE_LAMBDA {
-    constexpr int w = decltype(width)::value;
-    for (int c = 0; c < nv; ++c) {
-      if constexpr (in_order) {
-        for (int k = 0; k < w; ++k) at(nq + r0 + k, c) = d(r0 + k, c);
-        for (int k = 0; k < w; ++k) at(nq + r0 + k, nq + c) = d(r0 + k, nv + c);
-      } else {
-        if (coordinate[c] >= 0)
-          for (int k = 0; k < w; ++k) at(nq + row[r0 + k], coordinate[c]) = d(r0 + k, c);
-        for (int k = 0; k < w; ++k) at(nq + row[r0 + k], nq + c) = d(r0 + k, nv + c);
-      }
-    }
-  };
-  constexpr int tile = 4;
-  for (int r0 = 0; r0 + tile <= nv; r0 += tile) copy_rows(r0, std::integral_constant<int, tile>{});
-  if constexpr (nv % tile != 0) copy_rows(nv - nv % tile, std::integral_constant<int, nv % tile>{});
+  detail::place_transposed<detail::derivative_rows<S>::ColsAtCompileTime, S::n_state, row,
+                           detail::derivative_column_place<S>>(d.data(), Jn, nq);
   for (int c = 0; c < nv; ++c)
     if (coordinate[c] >= 0) at(coordinate[c], nq + c) = 1;
   // A ball's quaternion Q = (x, y, z, w): q̇ = ½·Q ⊗ (ω, 0) (linear in Q and
