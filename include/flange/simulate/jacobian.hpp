@@ -197,9 +197,9 @@ inline constexpr std::array<int, 2 * S::n_v> derivative_column_place = [] {
 /// Whether jacobian() takes the analytic derivatives: wherever they apply,
 /// but for a scene of one rate, or of one link with force elements, where
 /// the passes' fixed cost (and the loads' dual numbers) exceed dual numbers
-/// through the derivative: the one-link chain of a run-time axis 113
-/// against 86 ns, the paper's arm 93 against 29 ns, a ball on the ground 2.1
-/// against 1.6 µs; a free body without loads (six rates) is the other way
+/// through the derivative: the one-link chain of a run-time axis 98
+/// against 83 ns, the paper's arm 71 against 27 ns, a ball on the ground 2.1
+/// against 1.5 µs; a free body without loads (six rates) is the other way
 /// round, 0.74 against 1.24 µs (build/benchmarks/jacobian's analytic_ns and
 /// dual_ns; docs/performance.md, "The Jacobian").
 template <class S>
