@@ -119,11 +119,13 @@ template <int ls, int ld, auto row_to, auto col_to>
 #endif
 
 /// dst(r0 + row_to[r], col_to[c]) = src(r, c), as above, in AVX2 where the
-/// processor runs it.
+/// processor runs it and src has a block of four rows to turn (with fewer,
+/// the portable code inlined: the crane's Jacobian 71 against 73 ns).
 template <int ls, int ld, auto row_to, auto col_to>
 FLANGE_INLINE void place_transposed(const double* src, double* dst, int r0) {
 #if defined(FLANGE_X86_DISPATCH) && !defined(FLANGE_NO_AVX2)
-  if (cpu_has_avx2) return place_transposed_avx2<ls, ld, row_to, col_to>(src, dst, r0);
+  if constexpr (row_to.size() >= 4)
+    if (cpu_has_avx2) return place_transposed_avx2<ls, ld, row_to, col_to>(src, dst, r0);
 #endif
   place_transposed_portable<ls, ld, row_to, col_to>(src, dst, r0);
 }
