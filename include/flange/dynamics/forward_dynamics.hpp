@@ -110,12 +110,21 @@ template <class A, class S, class T, class M>
   else return (motions);
 }
 
-/// v̇ = M⁻¹·(τ − b) with the motions at q given. Always inlined into its
+/// A scene's M at q as its loops' solve used it: its LDLᵀ factor in place
+/// (ldlt_factor), and the factor's pivots.
+template <class S, class T>
+struct factored_mass {
+  Eigen::Matrix<T, S::n_v, S::n_v> M;
+  ldlt_pivots<S::n_v, T> f;
+};
+
+/// v̇ = M⁻¹·(τ − b) with the motions at q given (and, for a scene with
+/// loops, M's factor into *mass where given). Always inlined into its
 /// caller: a call would pass every link's motion through memory.
 template <class A, class S, class T, class M, class PM>
 [[gnu::always_inline]] inline void solve_accelerations(const S& scene, const T& t, const T* q, const T* v, T* vdot,
                                                       const M& motions, const PM& pose, T* lambda = nullptr,
-                                                      bool* exact = nullptr) {
+                                                      bool* exact = nullptr, factored_mass<S, T>* mass = nullptr) {
   constexpr int N = S::n_v;
   const auto x = state_view(scene, q, v);
   link_loads<S, T> n_ext, f_ext;
@@ -178,6 +187,10 @@ template <class A, class S, class T, class M, class PM>
       if (const auto pivot = ldlt_factor<N>(Mm, f, scale.data(), mass_factor<S>{}); pivot.index >= 0) [[unlikely]]
         singular_mass_matrix<S>(pivot, t, q, v);
       constrained_accelerations(scene, pose, Mm, f, v, r.data(), vdot, lambda, exact);
+      if (mass) {
+        mass->M = Mm;
+        mass->f = f;
+      }
     } else {
       if (const auto pivot = solve_spd<N>(Mm, r.data(), vdot, scale.data(), mass_factor<S>{}); pivot.index >= 0)
           [[unlikely]]
@@ -207,14 +220,16 @@ void accelerations_in(const S& scene, const T& t, const T* q, const T* v, T* vdo
 
 /// v̇ at (t, q, v) and the loops' constraint forces λ (dynamics/loop_solve.hpp),
 /// for a scene with loops; with exact given, whether the loop solve was the
-/// exact one there (constrained_accelerations).
+/// exact one there (constrained_accelerations); with mass given, the
+/// factored M it solved with (what simulate/jacobian.hpp's implicit
+/// differentiation solves with too).
 template <class S, class T>
 void accelerations_and_constraint_forces(const S& scene, const T& t, const T* q, const T* v, T* vdot, T* lambda,
-                                         bool* exact = nullptr) {
+                                         bool* exact = nullptr, detail::factored_mass<S, T>* mass = nullptr) {
   using A = algebra_t<S>;
   const auto motions = detail::algebra_motions<A>(scene, q);
   detail::solve_accelerations<A>(scene, t, q, v, vdot, motions, detail::pose_motions<A>(scene, q, motions), lambda,
-                                 exact);
+                                 exact, mass);
 }
 
 /// v̇ at (t, q, v) by Newton–Euler, the mass matrix and LDLᵀ, in the

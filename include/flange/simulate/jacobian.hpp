@@ -330,20 +330,16 @@ bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matr
   std::array<double, nv> a;
   std::array<double, m> lambda;
   bool exact = false;
-  accelerations_and_constraint_forces(scene, t, q, v, a.data(), lambda.data(), &exact);
+  // [M −Gᵀ; G 0] by its blocks: M = L·D·Lᵀ as the loop solve factored it;
+  // from the first pass's values of G, B = L⁻¹·Gᵀ and the Schur complement
+  // S = G·M⁻¹·Gᵀ = Bᵀ·D⁻¹·B, factored the same way. The loop solve kept
+  // every row undamped, so S is as well conditioned as its rows (each at
+  // least 100 times the damping away from depending on the rows before it).
+  factored_mass<S, double> mass;
+  accelerations_and_constraint_forces(scene, t, q, v, a.data(), lambda.data(), &exact, &mass);
   if (!exact) return false;
-  // [M −Gᵀ; G 0] by its blocks: M = L·D·Lᵀ here; from the first pass's
-  // values of G, B = L⁻¹·Gᵀ and the Schur complement S = G·M⁻¹·Gᵀ =
-  // Bᵀ·D⁻¹·B, factored the same way. The loop solve kept every row
-  // undamped, so S is as well conditioned as its rows (each at least 100
-  // times the damping away from depending on the rows before it).
-  Eigen::Matrix<double, nv, nv> M;
-  ldlt_pivots<nv, double> fM;
-  {
-    std::array<double, nv> scale;
-    mass_matrix<A>(scene, algebra_motions<A>(scene, q), M, scale.data());
-    if (ldlt_factor<nv>(M, fM, scale.data(), mass_factor<S>{}).index >= 0) return false;
-  }
+  const auto& M = mass.M;
+  const auto& fM = mass.f;
   std::array<std::array<double, nv>, m> B;  // B[c]: L⁻¹ times row c of G
   Eigen::Matrix<double, m, m> Sc;
   ldlt_pivots<m, double> fS;
