@@ -117,8 +117,11 @@ struct all_links {
   }();
 };
 
-/// The pose pass: R, r, ṙ and ω of every link (link 0 is the World); only
-/// the links Keep::value marks are written out (the others pass theirs down).
+/// The pose pass: R, r, ṙ and ω of every link (link 0 is the World), each
+/// computed in its place in out and read there by its children: a pose of
+/// dual numbers is a kilobyte, which a pose passed down by value copied
+/// twice a link. (Keep::value marks the links the caller reads; the pass
+/// writes them all.)
 template <class S, class T, class Motions, class Keep, velocity_in V>
 struct pose_pass : down_only_walk {
   using pose = link_pose<T, V>;
@@ -128,14 +131,14 @@ struct pose_pass : down_only_walk {
 
   template <int L>
   nothing at(const pose& d) {
-    if constexpr (Keep::value[L]) out[L] = d;
+    if constexpr (L == 0 && Keep::value[0]) out[0] = d;  // the others are there already (down)
     return {};
   }
   template <int L, int C>
-  pose down(const pose& P) {
+  const pose& down(const pose& P) {
     const auto& m = std::get<C - 1>(motions);
     const T* vc = v + link_info<S, C>::v;
-    pose c;
+    pose& c = out[C];
     if constexpr (L == 0) {  // on the World: R_P = 1, r_P = ṙ_P = ω_P = 0
       c.R = to_matrix<T>(m.E());
       c.r = m.p.dense();
@@ -146,8 +149,17 @@ struct pose_pass : down_only_walk {
       // Each product in its sparse form (a revolute about a coordinate axis
       // turns two rows of R; an offset along one axis reads one column; in
       // a planar scene P's R is a turn about the normal and ω lies along it).
-      for (int j = 0; j < 3; ++j) c.R.col(j) = rot(m.E(), to_svec(Vec3<T>(P.R.col(j)))).dense();
       constexpr int K = planar_axis<S>();
+      using E = std::remove_cvref_t<decltype(m.E())>;
+      if constexpr (K >= 0 && (is_identity_rotation<E> || std::is_same_v<E, coordinate_rotation<T, K>>)) {
+        // In the plane both turn about K: E·R is the turn whose first
+        // in-plane column is E times R's, the rest of R as it is.
+        constexpr int j = (K + 1) % 3, k = (K + 2) % 3;
+        const auto cj = rot(m.E(), to_svec<(1 << j) | (1 << k)>(P.R.col(j)));
+        c.R = to_matrix<T>(coordinate_rotation<T, K>{cj.template at<j>(), -cj.template at<k>()});
+      } else {
+        for (int j = 0; j < 3; ++j) c.R.col(j) = rot(m.E(), to_svec(Vec3<T>(P.R.col(j)))).dense();
+      }
       const auto& R = typed_rotation<K>(P);
       const auto w = typed_angular<K>(P.w);
       c.r = P.r + rot_t(R, m.p).dense();
@@ -161,8 +173,8 @@ struct pose_pass : down_only_walk {
   }
 };
 
-/// World poses and velocities of the links Keep::value marks (the others are
-/// left unset) at (q, v), the velocities in V's coordinates; motions in the
+/// World poses and velocities of the links at (q, v) (Keep::value: those
+/// the caller reads), the velocities in V's coordinates; motions in the
 /// spatial algebra.
 template <class S, class T, class Keep = all_links<S>, velocity_in V = velocity_in::world, class Motions>
 FLANGE_INLINE std::array<link_pose<T, V>, S::tree.n_links> link_poses(const Motions& motions, const T* v) {
