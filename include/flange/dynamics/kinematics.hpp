@@ -118,10 +118,10 @@ struct all_links {
 };
 
 /// The pose pass: R, r, ṙ and ω of every link (link 0 is the World), each
-/// computed in its place in out and read there by its children: a pose of
-/// dual numbers is a kilobyte, which a pose passed down by value copied
-/// twice a link. (Keep::value marks the links the caller reads; the pass
-/// writes them all.)
+/// computed in its place in out and read there by its children, not passed
+/// down by value and copied into out (a pose of dual numbers in six
+/// directions is a kilobyte). Keep::value marks the links the caller
+/// reads; the pass writes them all.
 template <class S, class T, class Motions, class Keep, velocity_in V>
 struct pose_pass : down_only_walk {
   using pose = link_pose<T, V>;
