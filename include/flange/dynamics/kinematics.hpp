@@ -152,11 +152,7 @@ struct pose_pass : down_only_walk {
       constexpr int K = planar_axis<S>();
       using E = std::remove_cvref_t<decltype(m.E())>;
       if constexpr (K >= 0 && (is_identity_rotation<E> || std::is_same_v<E, coordinate_rotation<T, K>>)) {
-        // In the plane both turn about K: E·R is the turn whose first
-        // in-plane column is E times R's, the rest of R as it is.
-        constexpr int j = (K + 1) % 3, k = (K + 2) % 3;
-        const auto cj = rot(m.E(), to_svec<(1 << j) | (1 << k)>(P.R.col(j)));
-        c.R = to_matrix<T>(coordinate_rotation<T, K>{cj.template at<j>(), -cj.template at<k>()});
+        c.R = to_matrix<T>(compose(m.E(), typed_rotation<K>(P)));  // in the plane both turn about K
       } else {
         for (int j = 0; j < 3; ++j) c.R.col(j) = rot(m.E(), to_svec(Vec3<T>(P.R.col(j)))).dense();
       }
