@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Instructions (callgrind) per jacobian() and per derivative of the Jacobian
+# benchmark's small scenes, compiled once from tools/probes/small_jacobians.cpp
+# at the Release flags against this tree's headers:
+#   tools/jacobian_counts.sh [scene ...] [-- CXXFLAGS...]
+# (scenes: chain_any_1 chain_typed_2 gantry_crane spatial_arm free_body
+# tree_legged_1 tree_legged_2; all of them by default). Prints one line per
+# scene, "jacobian <scene> jacobian_instructions=<j>
+# derivative_instructions=<d> ratio=<j/d>": each count the difference between
+# runs of 2000 and 1000 calls over 1000, so that start-up does not count.
+# Instructions are not time (the gantry crane's Jacobian is 3.2 derivatives
+# in instructions and 4.2 in time: docs/performance.md, "The Jacobian"), but
+# they do not move with the machine or with where the code lies.
+set -euo pipefail
+scenes=()
+while [[ $# -gt 0 && $1 != -- ]]; do scenes+=("$1"); shift; done
+[[ ${1:-} == -- ]] && shift
+[[ ${#scenes[@]} -eq 0 ]] && scenes=(chain_any_1 chain_typed_2 gantry_crane spatial_arm free_body tree_legged_1 tree_legged_2)
+here=$(cd "$(dirname "$0")/.." && pwd)
+exe=$(mktemp)
+trap 'rm -f "$exe"' EXIT
+eigen=$(pkg-config --cflags eigen3 2>/dev/null || echo -I/usr/include/eigen3)
+g++ -std=c++20 -O3 -DNDEBUG "$@" -I"$here/include" $eigen "$here/tools/probes/small_jacobians.cpp" -o "$exe"
+count() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$exe" "$@" 2>&1 | awk '/Collected/ { print $4 }'; }
+for s in "${scenes[@]}"; do
+  j=$(( ($(count "$s" 2000) - $(count "$s" 1000)) / 1000 ))
+  d=$(( ($(count "$s" 2000 d) - $(count "$s" 1000 d)) / 1000 ))
+  echo "jacobian $s jacobian_instructions=$j derivative_instructions=$d ratio=$(awk -v j="$j" -v d="$d" 'BEGIN { printf "%.2f", j / d }')"
+done
