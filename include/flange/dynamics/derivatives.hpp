@@ -332,6 +332,95 @@ struct plane {
   }
 };
 
+/// A node's column s in the passes' frame by its shape, where the passes
+/// know it: a turn c·e_k about coordinate axis k through the frame's origin,
+/// s = (c·e_k, 0) (the shape is k: link 1's columns along a typed axis in its
+/// own axes, a floating base's rotation rates), a translation s = (0, l)
+/// (translation_column), or any column (any_column). The products below with
+/// such a column leave out the terms its zeros make zero: the same numbers
+/// (but for the sign of a zero).
+inline constexpr int any_column = -1, translation_column = -2;
+
+/// (c·e_k) × x: each k made from registers (a number stored at a place
+/// known only at run time, and read back as part of a pair, waits for the
+/// store to land).
+FLANGE_INLINE Vec3d axis_cross(int k, double c, const Vec3d& x) {
+  if (k == 0) return {0, -c * x[2], c * x[1]};
+  if (k == 1) return {c * x[2], 0, -c * x[0]};
+  return {-c * x[1], c * x[0], 0};
+}
+
+/// s·x for column s of shape k.
+template <class G>
+FLANGE_INLINE double column_dot(int k, const spatial<G>& s, const spatial<G>& x) {
+  if constexpr (std::is_same_v<G, space>) {
+    if (k >= 0) return s.a[k] * x.a[k];
+    if (k == translation_column) return s.l.dot(x.l);
+  }
+  return s.dot(x);
+}
+/// The angular parts' product z·s_a.
+template <class G>
+FLANGE_INLINE double column_angular_dot(int k, const typename G::ang& z, const spatial<G>& s) {
+  if constexpr (std::is_same_v<G, space>) {
+    if (k >= 0) return z[k] * s.a[k];
+    if (k == translation_column) return 0.0;
+  }
+  return inner(z, s.a);
+}
+/// I·s.
+template <class G>
+FLANGE_INLINE spatial<G> inertia_times_column(int k, const world_inertia<G>& I, const spatial<G>& s) {
+  if constexpr (std::is_same_v<G, space>) {
+    if (k >= 0) {
+      const double c = s.a[k];
+      return {I.I.col(k) * c, axis_cross(k, c, I.h)};
+    }
+    if (k == translation_column) return {cross(I.h, s.l), s.l * I.m};
+  }
+  return I * s;
+}
+/// B·s.
+template <class G>
+FLANGE_INLINE spatial<G> coupling_times_column(int k, const velocity_coupling<G>& B, const spatial<G>& s) {
+  if constexpr (std::is_same_v<G, space>) {
+    if (k >= 0) {
+      const double c = s.a[k];
+      return {B.T.col(k) * c, -axis_cross(k, c, B.k)};
+    }
+    if (k == translation_column) return {Vec3d::Zero(), Vec3d::Zero()};
+  }
+  return B * s;
+}
+/// The angular part of Bᵀ·s.
+template <class G>
+FLANGE_INLINE typename G::ang coupling_transposed_times_column(int k, const velocity_coupling<G>& B,
+                                                              const spatial<G>& s) {
+  if constexpr (std::is_same_v<G, space>) {
+    if (k >= 0) return B.T.row(k).transpose() * s.a[k];
+    if (k == translation_column) return cross(s.l, B.k);
+  }
+  return B.transposed_times(s);
+}
+/// s × v.
+template <class G>
+FLANGE_INLINE spatial<G> column_motion_cross(int k, const spatial<G>& s, const spatial<G>& v) {
+  if constexpr (std::is_same_v<G, space>) {
+    if (k >= 0) return {axis_cross(k, s.a[k], v.a), axis_cross(k, s.a[k], v.l)};
+    if (k == translation_column) return {Vec3d::Zero(), cross(s.l, v.a)};
+  }
+  return motion_cross(s, v);
+}
+/// s ×* f.
+template <class G>
+FLANGE_INLINE spatial<G> column_force_cross(int k, const spatial<G>& s, const spatial<G>& f) {
+  if constexpr (std::is_same_v<G, space>) {
+    if (k >= 0) return {axis_cross(k, s.a[k], f.a), axis_cross(k, s.a[k], f.l)};
+    if (k == translation_column) return {cross(s.l, f.l), Vec3d::Zero()};
+  }
+  return force_cross(s, f);
+}
+
 /// The geometry a scene's passes run in: its plane if it is planar, else space.
 template <class S>
 using geometry_t =
@@ -474,10 +563,28 @@ template <class M, bool Lin, int... K>
 constexpr unsigned zero_column_parts(std::integer_sequence<int, K...>) {
   return ((unsigned(zero_column_part<M, K, Lin>()) << K) | ... | 0u);
 }
+/// The axis k of column K of link motion M where its angular part is along
+/// a coordinate axis by type (c·e_k), else −1.
+template <class M, int K>
+constexpr int axial_column_part() {
+  using C = decltype(std::declval<const M&>().template col<K>());
+  using A = std::remove_cvref_t<decltype(std::declval<C>().ang)>;
+  if constexpr (is_svec<A>) return A::mask == 1 ? 0 : A::mask == 2 ? 1 : A::mask == 4 ? 2 : -1;
+  else return -1;
+}
+template <class M, int... K>
+constexpr std::array<int, 8> axial_column_parts(std::integer_sequence<int, K...>) {
+  std::array<int, 8> r{};
+  ((r[K] = axial_column_part<M, K>()), ...);
+  return r;
+}
 
 /// Which parts of the nodes' columns are zero by type: no_ang[n] (a
 /// translation: a Prismatic's, a ball's or a Cylindrical's) and no_lin[n] (a
-/// rotation about an axis through the link's origin: a Revolute's, a ball's).
+/// rotation about an axis through the link's origin: a Revolute's, a ball's);
+/// and axis[n], the coordinate axis k of a column whose angular part is
+/// c·e_k by type in its link's coordinates (a ball's rotation rates, a
+/// Revolute about a typed axis), else −1.
 template <class S>
 struct column_parts {
   using nodes = derivative_nodes<S>;
@@ -485,20 +592,26 @@ struct column_parts {
     using motions = decltype(link_motions<spatial_algebra, double, true>(std::declval<const S&>(),
                                                                         std::declval<const double*>()));
     std::array<unsigned, S::tree.n_links> ang{}, lin{};  // bit k: column k of link L's joint
+    std::array<std::array<int, 8>, S::tree.n_links> axial{};
     [&]<int... L>(std::integer_sequence<int, L...>) {
       ((ang[L + 1] = zero_column_parts<std::tuple_element_t<L, motions>, false>(
             std::make_integer_sequence<int, link_info<S, L + 1>::nv>{}),
         lin[L + 1] = zero_column_parts<std::tuple_element_t<L, motions>, true>(
+            std::make_integer_sequence<int, link_info<S, L + 1>::nv>{}),
+        axial[L + 1] = axial_column_parts<std::tuple_element_t<L, motions>>(
             std::make_integer_sequence<int, link_info<S, L + 1>::nv>{})),
        ...);
     }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
     struct r_t {
       std::array<bool, nodes::NN> no_ang{}, no_lin{};
+      std::array<int, nodes::NN> axis{};
     } r;
+    r.axis[0] = -1;
     for (int n = 1; n < nodes::NN; ++n) {
       const int L = nodes::table.link[n], k = nodes::table.index[n];
       r.no_ang[n] = (ang[L] >> k) & 1u;
       r.no_lin[n] = (lin[L] >> k) & 1u;
+      r.axis[n] = axial[L][k];
     }
     return r;
   }();
@@ -900,6 +1013,52 @@ template <class S, bool Articulated>
     R[L] = rotate_nt(R[P], E[L]);
     r[L] = plus(r[P], rotate(R[P], p[L]));
   }
+  // The nodes' columns by shape in the passes' frame (column_dot and the
+  // products beside it), where link 1 turns on a ball (a floating base, a
+  // free body, a Spherical at the root) and every link hangs from it: in
+  // link 1's axes its rates' columns are translations and turns about
+  // coordinate axes through the origin, and its nodes 1 … trunk are every
+  // node's last ancestors. Elsewhere every column is any_column.
+  constexpr int trunk = nodes::table.last[1];
+  constexpr bool shaped = !in_plane && link1_axes && ball_links<S>[1] && [] {
+    for (int L = 2; L < NL; ++L) {
+      int P = S::tree.link_parent[L];
+      while (P > 1) P = S::tree.link_parent[P];
+      if (P != 1) return false;
+    }
+    return true;
+  }();
+  // A turn is shaped only where its velocity parent moves by translation
+  // alone (a ball's, at the root or on a floating base's translations): its
+  // u and ψ then have no angular part, which the passes below also use.
+  static constexpr auto shape = [] {
+    std::array<int, NN> k{};
+    for (int n = 0; n < NN; ++n) k[n] = any_column;
+    if (shaped)
+      for (int n = 1; n <= trunk; ++n)
+        k[n] = parts.no_ang[n] ? translation_column
+               : parts.no_lin[n] && parts.axis[n] >= 0 && translating_nodes<S>[nodes::table.vparent[n]]
+                   ? parts.axis[n]
+                   : any_column;
+    return k;
+  }();
+  auto shape_of = [](int n) FLANGE_INLINE_LAMBDA { return shaped ? shape[n] : any_column; };
+  // f(j, k) for node `from` and each of its ancestors, nearest first, k the
+  // shape of j's column (a constant): where columns are shaped, the trunk's
+  // nodes written out, each with j a constant.
+  auto up_from = [&](int from, auto&& f) FLANGE_INLINE_LAMBDA {
+    if constexpr (shaped) {
+      int j = from;
+      if constexpr (trunk < NN - 1)  // nodes below the trunk
+        for (; j > trunk; j = parent[j]) f(j, std::integral_constant<int, any_column>{});
+      static_for<trunk>([&](auto t) FLANGE_INLINE_LAMBDA {
+        constexpr int jt = trunk - decltype(t)::value;
+        if (jt <= j) f(jt, std::integral_constant<int, shape[jt]>{});
+      });
+    } else {
+      for (int j = from; j != 0; j = parent[j]) f(j, std::integral_constant<int, any_column>{});
+    }
+  };
   const typename G::lin r1 = r[1];
   if constexpr (!link1_axes)
     for (int L = 1; L < NL; ++L) r[L] -= r1;
@@ -942,7 +1101,8 @@ template <class S, bool Articulated>
   if constexpr (balls)
     for (int n = 1; n < NN; ++n) {
       uv_ball[n] = u[n];
-      if (nodes::table.ball[n]) uv_ball[n] += motion_cross(s[n], vel[last[node_link[n]]] - vel[vparent[n]]) * 0.5;
+      if (nodes::table.ball[n])
+        uv_ball[n] += column_motion_cross<G>(shape_of(n), s[n], vel[last[node_link[n]]] - vel[vparent[n]]) * 0.5;
     }
   auto uv = [&](int n) -> const spatial<G>& {
     if constexpr (balls) return uv_ball[n];
@@ -1009,11 +1169,13 @@ template <class S, bool Articulated>
     chain_M.start();
   }
   over_nodes<NN, true>([&](const int n) FLANGE_INLINE_LAMBDA {
-    const int i = rate[n];
-    y[n] = Ic[n] * s[n];
-    z[n] = Bc[n].transposed_times(s[n]);
-    b[n - 1] = -s[n].dot(F[n]);
-    const spatial<G> Gv = Bc[n] * s[n] + Ic[n] * uv(n) * 2;
+    const int i = rate[n], kn = shape_of(n);
+    y[n] = inertia_times_column<G>(kn, Ic[n], s[n]);
+    z[n] = coupling_transposed_times_column<G>(kn, Bc[n], s[n]);
+    b[n - 1] = -column_dot<G>(kn, s[n], F[n]);
+    // (A node that moves by translation alone has u = 0.)
+    const spatial<G> Gv = translating[n] ? coupling_times_column<G>(kn, Bc[n], s[n])
+                                         : coupling_times_column<G>(kn, Bc[n], s[n]) + Ic[n] * uv(n) * 2;
     yard[n - 1] = trace_of(Ic[n].I) + Ic[n].m;
     if constexpr (stacked) {
       const auto yn = numbers(y[n]), zn = numbers(spatial<G>{z[n], G::lin::Zero()}), gv = numbers(Gv);
@@ -1033,11 +1195,11 @@ template <class S, bool Articulated>
         out(j - 1, N + i) = e;
       }
     } else {
-      for (int j = n; j != 0; j = parent[j]) {
-        if constexpr (!Articulated) M(n - 1, j - 1) = y[n].dot(s[j]);
-        out(n - 1, N + rate[j]) = translating[j] ? 0.0 : inner(z[n], s[j].a) + 2 * y[n].dot(uv(j));
-      }
-      for (int j = parent[n]; j != 0; j = parent[j]) out(j - 1, N + i) = s[j].dot(Gv);
+      up_from(n, [&](int j, auto kj) FLANGE_INLINE_LAMBDA {
+        if constexpr (!Articulated) M(n - 1, j - 1) = column_dot<G>(kj, s[j], y[n]);
+        out(n - 1, N + rate[j]) = translating[j] ? 0.0 : column_angular_dot<G>(kj, z[n], s[j]) + 2 * y[n].dot(uv(j));
+      });
+      up_from(parent[n], [&](int j, auto kj) FLANGE_INLINE_LAMBDA { out(j - 1, N + i) = column_dot<G>(kj, s[j], Gv); });
     }
     if constexpr (Articulated) chain_M.node(n - 1, numbers(s[n]), G::matrix_of(own[n]), yard[n - 1], tol);
     if (const int P = parent[n]; P != 0) {
@@ -1318,13 +1480,17 @@ template <class S, bool Articulated>
   std::array<spatial<G>, NN> Y;
   for (int n = 0; n < NN; ++n) Y[n] = {G::zero_ang(), G::lin::Zero()};
   over_nodes<NN, true>([&](const int n) FLANGE_INLINE_LAMBDA {
-    const int i = rate[n];
+    const int i = rate[n], kn = shape_of(n);
     F[n] += Ic[n] * da[n] + Y[n];
     // With loads, ∂s_n/∂q_j = s_j × s_n turns their share: −(s_j × s_n)ᵀ·W_n.
     std::conditional_t<loaded, spatial<G>, int> gw{};
     if constexpr (loaded) gw = force_cross(s[n], W[n]);
-    const spatial<G> Gq =
-        translating[n] ? force_cross(s[n], F[n]) : force_cross(s[n], F[n]) + Bc[n] * u[n] - Ic[n] * psi[n];
+    // A shaped turn's u and ψ have no angular part (its velocity parent
+    // moves by translation alone), so that B·u is zero and I·ψ reads ψ's
+    // linear part.
+    spatial<G> Gq = column_force_cross<G>(kn, s[n], F[n]);
+    if (kn >= 0) Gq = Gq - inertia_times_column<G>(translation_column, Ic[n], psi[n]);
+    else if (!translating[n]) Gq = Gq + Bc[n] * u[n] - Ic[n] * psi[n];
     if constexpr (stacked) {
       const auto yn = numbers(y[n]), zn = numbers(spatial<G>{z[n], G::lin::Zero()}), gq = numbers(Gq);
       for (int j = 1; j <= n; ++j) {
@@ -1339,12 +1505,14 @@ template <class S, bool Articulated>
         out(j - 1, i) = e;
       }
     } else {
-      for (int j = n; j != 0; j = parent[j]) {
-        double e = translating[j] ? 0.0 : y[n].dot(psi[j]) - inner(z[n], u[j].a);
-        if constexpr (loaded) e += s[j].dot(gw);
+      up_from(n, [&](int j, auto kj) FLANGE_INLINE_LAMBDA {
+        double e = translating[j] ? 0.0
+                   : kj >= 0      ? column_dot<G>(translation_column, psi[j], y[n])
+                                  : y[n].dot(psi[j]) - inner(z[n], u[j].a);
+        if constexpr (loaded) e += column_dot<G>(kj, s[j], gw);
         out(n - 1, rate[j]) = e;
-      }
-      for (int j = parent[n]; j != 0; j = parent[j]) {
+      });
+      up_from(parent[n], [&](int j, auto kj) FLANGE_INLINE_LAMBDA {
         // Within a ball, node j's column turns with n's rate too: row j,
         // column n as for an ancestor.
         if (balls && nodes::table.group[j] == nodes::table.group[n]) {
@@ -1352,9 +1520,9 @@ template <class S, bool Articulated>
           if constexpr (loaded) e += s[n].dot(force_cross(s[j], W[j]));
           out(j - 1, i) = e;
         } else {
-          out(j - 1, i) = -s[j].dot(Gq);
+          out(j - 1, i) = -column_dot<G>(kj, s[j], Gq);
         }
-      }
+      });
     }
     Y[parent[n]] += y[n] * b[n - 1] + Y[n];
     out(n - 1, i) += dQ[n][0];
