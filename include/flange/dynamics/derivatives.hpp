@@ -67,6 +67,11 @@
 // axes (Q moving by ½·Q ⊗ (δ, 0)); simulate/jacobian.hpp maps them to the
 // quaternion's four coordinates (R is homogeneous in Q).
 //
+// Where link 1 turns on a ball that every link hangs from (a floating base,
+// a free body), its nodes' columns in its own axes are known by shape: a
+// translation (0, l), a turn (c·e_k, 0) about coordinate axis k. Their
+// products (column_dot and the ones beside it) leave out the zero half.
+//
 // A joint of several rates that moves as one-rate joints in series
 // (core/joint.hpp, sequential_rates: a Universal, a Cylindrical, a Planar) is
 // as many nodes in a row, each of them a one-axis joint's node: rate k's
