@@ -1,27 +1,15 @@
 // The Jacobian benchmark's chains (jacobian.hpp): random chains with run-time
 // axes (chain_any), typed axes turning x, y, z in turn (chain_typed) and
 // typed z axes (chain_planar), as in the scale benchmark.
-#include <random>
-
-#include <flange/models/chain.hpp>
-
 #include "jacobian.hpp"
+#include "states.hpp"
 
 namespace {
-template <int I>
-struct xyz_axes {
-  using type = flange::axis::coordinate<I % 3>;
-};
+using jacobian_bench::xyz_axes;
 
 template <int N, template <int> class Axes>
 void chain(const char* name) {
-  using namespace flange;
-  std::mt19937 rng(N);
-  const auto p = models::random_chain_params<N>(rng);
-  const auto s = models::chain<N, Axes>(p);
-  typename decltype(s)::state_type x;
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (auto& e : x) e = u(rng);
+  const auto [s, x] = jacobian_bench::random_chain<N, Axes>();
 #ifdef FLANGE_SCALE_FULL
   constexpr bool with_dual = N <= 16;  // the dual-number Jacobians cost the unit minutes to compile
 #else

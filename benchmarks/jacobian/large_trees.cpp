@@ -3,21 +3,15 @@
 // a free trunk with four legs of eight joints (N = 32 leg joints, 38
 // rates), and in the -DFLANGE_SCALE_FULL=ON build legged<8, 8> (N = 64, 70
 // rates, 141 states: past Eigen's fixed-size matrices, its Jacobian sized at
-// run time, simulate/jacobian.hpp). The same state as trees.cpp's.
-#include <cmath>
-
-#include <flange/models/legged.hpp>
-
+// run time, simulate/jacobian.hpp). The same state as trees.cpp's
+// (states.hpp).
 #include "jacobian.hpp"
+#include "states.hpp"
 
 namespace {
 template <int Legs, int Links>
 void legged() {
-  using namespace flange;
-  const auto s = models::legged<Legs, Links>();
-  auto x = neutral_state(s);
-  for (int i = 0; i < decltype(s)::n_state; ++i) x[i] += 0.1 * std::sin(1.3 * i + 0.4);
-  normalize(s, x);
+  const auto [s, x] = jacobian_bench::legged_tree<Legs, Links>();
   jacobian_bench::measure<false>("tree_legged", Legs * Links, s, x);
 }
 }  // namespace

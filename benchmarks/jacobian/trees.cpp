@@ -12,15 +12,12 @@
 #include <flange/models/legged.hpp>
 
 #include "jacobian.hpp"
+#include "states.hpp"
 
 namespace {
 template <int Legs, int Links, bool WithDual = false>
 void legged(const char* name) {
-  using namespace flange;
-  const auto s = models::legged<Legs, Links>();
-  auto x = neutral_state(s);
-  for (int i = 0; i < decltype(s)::n_state; ++i) x[i] += 0.1 * std::sin(1.3 * i + 0.4);
-  normalize(s, x);
+  const auto [s, x] = jacobian_bench::legged_tree<Legs, Links>();
   jacobian_bench::measure<WithDual>(name, Legs * Links, s, x);
 }
 }  // namespace

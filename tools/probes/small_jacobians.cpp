@@ -7,26 +7,18 @@
 //   probe <scene> <K> [d]     scene: chain_any_1, chain_typed_2, gantry_crane,
 //                             spatial_arm, free_body, tree_legged_1, tree_legged_2
 #include <flange/flange.hpp>
-#include <flange/models/chain.hpp>
-#include <flange/models/legged.hpp>
 #include <flange/models/paper.hpp>
 #include <flange/simulate/jacobian.hpp>
 
 #include <array>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <string_view>
 
+#include "../../benchmarks/jacobian/states.hpp"
 #include "../../examples/spatial_arm.hpp"
 
 namespace {
-template <int I>
-struct xyz_axes {
-  using type = flange::axis::coordinate<I % 3>;
-};
-
 double sink = 0;
 
 /// K calls of jacobian() (or of the derivative) of scene s from state x.
@@ -50,29 +42,10 @@ void calls(const Scene& s, State x, long k, bool derivative) {
   }
 }
 
-/// The benchmark's random chain of N links (benchmarks/jacobian/chains.cpp).
-template <int N, template <int> class Axes>
-void chain(long k, bool derivative) {
-  using namespace flange;
-  std::mt19937 rng(N);
-  const auto p = models::random_chain_params<N>(rng);
-  const auto s = models::chain<N, Axes>(p);
-  typename decltype(s)::state_type x;
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (auto& e : x) e = u(rng);
-  calls(s, x, k, derivative);
-}
-
-/// The benchmark's floating-base tree of Legs legs of one joint
-/// (benchmarks/jacobian/trees.cpp).
-template <int Legs>
-void legged(long k, bool derivative) {
-  using namespace flange;
-  const auto s = models::legged<Legs, 1>();
-  auto x = neutral_state(s);
-  for (int i = 0; i < decltype(s)::n_state; ++i) x[i] += 0.1 * std::sin(1.3 * i + 0.4);
-  normalize(s, x);
-  calls(s, x, k, derivative);
+/// A scene of benchmarks/jacobian/states.hpp at its state.
+template <class SceneAndState>
+void calls(const SceneAndState& p, long k, bool derivative) {
+  calls(p.first, p.second, k, derivative);
 }
 }  // namespace
 
@@ -86,9 +59,9 @@ int main(int argc, char** argv) {
   const long k = std::atol(argv[2]);
   const bool d = argc > 3;
   if (scene == "chain_any_1") {
-    chain<1, models::runtime_axes>(k, d);
+    calls(jacobian_bench::random_chain<1, models::runtime_axes>(), k, d);
   } else if (scene == "chain_typed_2") {
-    chain<2, xyz_axes>(k, d);
+    calls(jacobian_bench::random_chain<2, jacobian_bench::xyz_axes>(), k, d);
   } else if (scene == "gantry_crane") {
     calls(models::gantry_crane({}, 0.5), std::array<double, 4>{0.2, 0.4, 0.3, -0.5}, k, d);
   } else if (scene == "spatial_arm") {
@@ -101,9 +74,9 @@ int main(int argc, char** argv) {
         connect<"world.frame_b", "fly.frame_a">, connect<"fly.frame_b", "b.frame_a">);
     calls(body, std::array<double, 13>{0, 0.099, 0, 0, 0, 0, 1, 0.5, -0.1, 0.2, 1.0, 2.0, -3.0}, k, d);
   } else if (scene == "tree_legged_1") {
-    legged<1>(k, d);
+    calls(jacobian_bench::legged_tree<1, 1>(), k, d);
   } else if (scene == "tree_legged_2") {
-    legged<2>(k, d);
+    calls(jacobian_bench::legged_tree<2, 1>(), k, d);
   } else {
     std::fprintf(stderr, "unknown scene %s\n", argv[1]);
     return 2;
