@@ -339,8 +339,8 @@ struct plane {
 
 /// A node's column s in the passes' frame by its shape, where the passes
 /// know it: a turn c·e_k about coordinate axis k through the frame's origin,
-/// s = (c·e_k, 0) (the shape is k: link 1's columns along a typed axis in its
-/// own axes, a floating base's rotation rates), a translation s = (0, l)
+/// s = (c·e_k, 0) (the shape is k: the rotation rates of a ball at link 1,
+/// in link 1's axes), a translation s = (0, l)
 /// (translation_column), or any column (any_column). The products below with
 /// such a column leave out the terms its zeros make zero: the same numbers
 /// (but for the sign of a zero).
