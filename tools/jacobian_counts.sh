@@ -4,7 +4,7 @@
 # at the Release flags against this tree's headers:
 #   tools/jacobian_counts.sh [scene ...] [-- CXXFLAGS...]
 # (scenes: chain_any_1 chain_typed_2 gantry_crane spatial_arm free_body
-# tree_legged_1 tree_legged_2; all of them by default). Prints one line per
+# tree_legged_1 tree_legged_2 tree_legged_4 fourbar; all of them by default). Prints one line per
 # scene, "jacobian <scene> jacobian_instructions=<j>
 # derivative_instructions=<d> ratio=<j/d>": each count the difference between
 # runs of 2000 and 1000 calls over 1000, so that start-up does not count.
@@ -15,7 +15,7 @@ set -euo pipefail
 scenes=()
 while [[ $# -gt 0 && $1 != -- ]]; do scenes+=("$1"); shift; done
 [[ ${1:-} == -- ]] && shift
-[[ ${#scenes[@]} -eq 0 ]] && scenes=(chain_any_1 chain_typed_2 gantry_crane spatial_arm free_body tree_legged_1 tree_legged_2)
+[[ ${#scenes[@]} -eq 0 ]] && scenes=(chain_any_1 chain_typed_2 gantry_crane spatial_arm free_body tree_legged_1 tree_legged_2 tree_legged_4 fourbar)
 here=$(cd "$(dirname "$0")/.." && pwd)
 exe=$(mktemp)
 trap 'rm -f "$exe"' EXIT

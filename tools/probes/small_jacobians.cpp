@@ -5,8 +5,10 @@
 // compiles it and prints one line per scene.
 //
 //   probe <scene> <K> [d]     scene: chain_any_1, chain_typed_2, gantry_crane,
-//                             spatial_arm, free_body, tree_legged_1, tree_legged_2
+//                             spatial_arm, free_body, tree_legged_1, tree_legged_2,
+//                             tree_legged_4, fourbar
 #include <flange/flange.hpp>
+#include <flange/models/linkages.hpp>
 #include <flange/models/paper.hpp>
 #include <flange/simulate/jacobian.hpp>
 
@@ -77,6 +79,15 @@ int main(int argc, char** argv) {
     calls(jacobian_bench::legged_tree<1, 1>(), k, d);
   } else if (scene == "tree_legged_2") {
     calls(jacobian_bench::legged_tree<2, 1>(), k, d);
+  } else if (scene == "tree_legged_4") {
+    calls(jacobian_bench::legged_tree<4, 1>(), k, d);
+  } else if (scene == "fourbar") {
+    const models::fourbar_params p{};
+    const auto fb = models::fourbar(p);
+    const auto q = models::fourbar_coordinates(p, 1.0, models::freudenstein_rocker(p, 1.0));
+    std::array<double, 6> x{q[0], q[1], q[2], 3.0, 0, 0};
+    close_loops<"crank_pivot">(fb, x);
+    calls(fb, x, k, d);
   } else {
     std::fprintf(stderr, "unknown scene %s\n", argv[1]);
     return 2;

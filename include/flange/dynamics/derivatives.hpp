@@ -70,7 +70,14 @@
 // Where link 1 turns on a ball that every link hangs from (a floating base,
 // a free body), its nodes' columns in its own axes are known by shape: a
 // translation (0, l), a turn (c·e_k, 0) about coordinate axis k. Their
-// products (column_dot and the ones beside it) leave out the zero half.
+// products (column_dot and the ones beside it) leave out the zero half, and
+// the passes up the tree take those nodes written out, each node and its
+// shape a constant.
+//
+// A link's nodes but its last carry no body, and each one's only child is
+// the next node of its link: they share its subtree, and so its composite
+// inertia, coupling and wrench, which the passes keep at the last node
+// alone (top) rather than copy down the link.
 //
 // A joint of several rates that moves as one-rate joints in series
 // (core/joint.hpp, sequential_rates: a Universal, a Cylindrical, a Planar) is
@@ -990,9 +997,19 @@ template <class S, bool Articulated>
   // accelerations as they would be at v̇ = 0 (acc⁰; the true ones follow once
   // v̇ is known, below); each body's inertia, its wrench at acc⁰ and its
   // velocity coupling, at its link's last node (the others carry none).
+  // A link's nodes but its last (a ball's, rates in series) carry no body,
+  // and each one's only child is the next node of its link: its subtree is
+  // that node's, and so are its composite inertia, coupling and wrench. The
+  // passes keep these at the link's last node (top) alone.
   std::array<spatial<G>, NN> s, vel, acc, u, psi, F;
   std::array<world_inertia<G>, NN> Ic;
   std::array<velocity_coupling<G>, NN> Bc;
+  static constexpr auto top_table = [] {
+    std::array<int, NN> t{};
+    for (int n = 1; n < NN; ++n) t[n] = nodes::table.last[nodes::table.link[n]];
+    return t;
+  }();
+  auto top = [](int n) FLANGE_INLINE_LAMBDA { return one_node_links ? n : top_table[n]; };
   // The passes hold in any fixed frame. Theirs has its origin at link 1's
   // origin, not the World's: a base far from the World's origin would
   // otherwise carry its lever arm (m·|r|²) into every inertia, where a light
@@ -1050,9 +1067,15 @@ template <class S, bool Articulated>
   auto shape_of = [](int n) FLANGE_INLINE_LAMBDA { return shaped ? shape[n] : any_column; };
   // f(j, k) for node `from` and each of its ancestors, nearest first, k the
   // shape of j's column (a constant): where columns are shaped, the trunk's
-  // nodes written out, each with j a constant.
-  auto up_from = [&](int from, auto&& f) FLANGE_INLINE_LAMBDA {
-    if constexpr (shaped) {
+  // nodes written out, each with j a constant; from a trunk node given as a
+  // constant (children_first, below), its ancestors alone.
+  auto up_from = [&](auto from, auto&& f) FLANGE_INLINE_LAMBDA {
+    if constexpr (requires { decltype(from)::value; }) {
+      static_for<trunk>([&](auto t) FLANGE_INLINE_LAMBDA {
+        constexpr int jt = trunk - decltype(t)::value;
+        if constexpr (jt <= decltype(from)::value) f(jt, std::integral_constant<int, shape[jt]>{});
+      });
+    } else if constexpr (shaped) {
       int j = from;
       if constexpr (trunk < NN - 1)  // nodes below the trunk
         for (; j > trunk; j = parent[j]) f(j, std::integral_constant<int, any_column>{});
@@ -1063,6 +1086,26 @@ template <class S, bool Articulated>
     } else {
       for (int j = from; j != 0; j = parent[j]) f(j, std::integral_constant<int, any_column>{});
     }
+  };
+  // step(n, k) for every node n, children first, k the shape of its column
+  // (a constant): where columns are shaped, the trunk's nodes written out,
+  // each n a constant (an integral_constant), so that its products with its
+  // column are its shape's alone, with no test at run time.
+  auto children_first = [&](auto&& step) FLANGE_INLINE_LAMBDA {
+    if constexpr (shaped) {
+      for (int n = NN - 1; n > trunk; --n) step(n, std::integral_constant<int, any_column>{});
+      static_for<trunk>([&](auto t) FLANGE_INLINE_LAMBDA {
+        constexpr int n = trunk - decltype(t)::value;
+        step(std::integral_constant<int, n>{}, std::integral_constant<int, shape[n]>{});
+      });
+    } else {
+      over_nodes<NN, true>([&](const int n) FLANGE_INLINE_LAMBDA { step(n, std::integral_constant<int, any_column>{}); });
+    }
+  };
+  // Node n's parent, a constant where n is.
+  auto parent_of = [](auto n) FLANGE_INLINE_LAMBDA {
+    if constexpr (requires { decltype(n)::value; }) return std::integral_constant<int, nodes::table.parent[decltype(n)::value]>{};
+    else return nodes::table.parent[n];
   };
   const typename G::lin r1 = r[1];
   if constexpr (!link1_axes)
@@ -1093,7 +1136,7 @@ template <class S, bool Articulated>
       const spatial<G> h = Ic[n] * vel[n];
       F[n] = Ic[n] * acc[n] + force_cross(vel[n], h);
       Bc[n] = G::coupling_of(Ic[n], vel[n], h);
-    } else {
+    } else if constexpr (Articulated) {  // the factor's own inertias (below)
       Ic[n] = {0, G::lin::Zero(), G::zero_moment()};
       F[n] = {G::zero_ang(), G::lin::Zero()};
       Bc[n] = {G::zero_moment(), G::lin::Zero()};
@@ -1173,15 +1216,15 @@ template <class S, bool Articulated>
     own = Ic;
     chain_M.start();
   }
-  over_nodes<NN, true>([&](const int n) FLANGE_INLINE_LAMBDA {
-    const int i = rate[n], kn = shape_of(n);
-    y[n] = inertia_times_column<G>(kn, Ic[n], s[n]);
-    z[n] = coupling_transposed_times_column<G>(kn, Bc[n], s[n]);
-    b[n - 1] = -column_dot<G>(kn, s[n], F[n]);
+  children_first([&](const auto n, auto kn) FLANGE_INLINE_LAMBDA {
+    const int i = rate[n], t = top(n);
+    y[n] = inertia_times_column<G>(kn, Ic[t], s[n]);
+    z[n] = coupling_transposed_times_column<G>(kn, Bc[t], s[n]);
+    b[n - 1] = -column_dot<G>(kn, s[n], F[t]);
     // (A node that moves by translation alone has u = 0.)
-    const spatial<G> Gv = translating[n] ? coupling_times_column<G>(kn, Bc[n], s[n])
-                                         : coupling_times_column<G>(kn, Bc[n], s[n]) + Ic[n] * uv(n) * 2;
-    yard[n - 1] = trace_of(Ic[n].I) + Ic[n].m;
+    const spatial<G> Gv = translating[n] ? coupling_times_column<G>(kn, Bc[t], s[n])
+                                         : coupling_times_column<G>(kn, Bc[t], s[n]) + Ic[t] * uv(n) * 2;
+    yard[n - 1] = trace_of(Ic[t].I) + Ic[t].m;
     if constexpr (stacked) {
       const auto yn = numbers(y[n]), zn = numbers(spatial<G>{z[n], G::lin::Zero()}), gv = numbers(Gv);
       for (int j = 1; j <= n; ++j) {
@@ -1204,13 +1247,13 @@ template <class S, bool Articulated>
         if constexpr (!Articulated) M(n - 1, j - 1) = column_dot<G>(kj, s[j], y[n]);
         out(n - 1, N + rate[j]) = translating[j] ? 0.0 : column_angular_dot<G>(kj, z[n], s[j]) + 2 * y[n].dot(uv(j));
       });
-      up_from(parent[n], [&](int j, auto kj) FLANGE_INLINE_LAMBDA { out(j - 1, N + i) = column_dot<G>(kj, s[j], Gv); });
+      up_from(parent_of(n), [&](int j, auto kj) FLANGE_INLINE_LAMBDA { out(j - 1, N + i) = column_dot<G>(kj, s[j], Gv); });
     }
     if constexpr (Articulated) chain_M.node(n - 1, numbers(s[n]), G::matrix_of(own[n]), yard[n - 1], tol);
-    if (const int P = parent[n]; P != 0) {
-      Ic[P] += Ic[n];
-      Bc[P] += Bc[n];
-      F[P] += F[n];
+    if (const int P = parent[n]; P != 0 && (one_node_links || top(P) != t)) {  // n: its link's first node
+      Ic[top(P)] += Ic[t];
+      Bc[top(P)] += Bc[t];
+      F[top(P)] += F[t];
     }
   });
   // The joints' own forces Q by dual numbers: their values into b, their
@@ -1484,18 +1527,18 @@ template <class S, bool Articulated>
   // ∂/∂q; then the joints' own.
   std::array<spatial<G>, NN> Y;
   for (int n = 0; n < NN; ++n) Y[n] = {G::zero_ang(), G::lin::Zero()};
-  over_nodes<NN, true>([&](const int n) FLANGE_INLINE_LAMBDA {
-    const int i = rate[n], kn = shape_of(n);
-    F[n] += Ic[n] * da[n] + Y[n];
+  children_first([&](const auto n, auto kn) FLANGE_INLINE_LAMBDA {
+    const int i = rate[n], t = top(n);
+    if (t == n) F[n] += Ic[n] * da[n] + Y[n];  // else its link's last node's, done
     // With loads, ∂s_n/∂q_j = s_j × s_n turns their share: −(s_j × s_n)ᵀ·W_n.
     std::conditional_t<loaded, spatial<G>, int> gw{};
     if constexpr (loaded) gw = force_cross(s[n], W[n]);
     // A shaped turn's u and ψ have no angular part (its velocity parent
     // moves by translation alone), so that B·u is zero and I·ψ reads ψ's
     // linear part.
-    spatial<G> Gq = column_force_cross<G>(kn, s[n], F[n]);
-    if (kn >= 0) Gq = Gq - inertia_times_column<G>(translation_column, Ic[n], psi[n]);
-    else if (!translating[n]) Gq = Gq + Bc[n] * u[n] - Ic[n] * psi[n];
+    spatial<G> Gq = column_force_cross<G>(kn, s[n], F[t]);
+    if (kn >= 0) Gq = Gq - inertia_times_column<G>(translation_column, Ic[t], psi[n]);
+    else if (!translating[n]) Gq = Gq + Bc[t] * u[n] - Ic[t] * psi[n];
     if constexpr (stacked) {
       const auto yn = numbers(y[n]), zn = numbers(spatial<G>{z[n], G::lin::Zero()}), gq = numbers(Gq);
       for (int j = 1; j <= n; ++j) {
@@ -1517,7 +1560,7 @@ template <class S, bool Articulated>
         if constexpr (loaded) e += column_dot<G>(kj, s[j], gw);
         out(n - 1, rate[j]) = e;
       });
-      up_from(parent[n], [&](int j, auto kj) FLANGE_INLINE_LAMBDA {
+      up_from(parent_of(n), [&](int j, auto kj) FLANGE_INLINE_LAMBDA {
         // Within a ball, node j's column turns with n's rate too: row j,
         // column n as for an ancestor.
         if (balls && nodes::table.group[j] == nodes::table.group[n]) {
