@@ -172,13 +172,17 @@ FLANGE_INLINE void tree_solve_block_row(const double* C, int ldc, const double* 
 /// Trees of at most this many nodes (the root included) are walked with
 /// each row's number a constant: every run's bounds known, each sum written
 /// out (on a scene of a few rates the loops and their tables cost more than
-/// the sums). The same products in the same order.
-inline constexpr int unrolled_tree_nodes = 8;
+/// the sums). The same products in the same order. A single column (the
+/// analytic derivatives' v̇, before their 2N + 1 columns) up to
+/// unrolled_column_nodes: walked by its tables, its one product a visit, it
+/// cost as much as the 2N + 1 columns' solve after it (two legs of one joint
+/// on a floating base, 8 nodes: about 1,000 instructions each).
+inline constexpr int unrolled_tree_nodes = 8, unrolled_column_nodes = 24;
 
 template <class Tree, int W>
 FLANGE_INLINE void tree_solve_block(const double* C, int ldc, const double* inv, double* X, int ldx, int c0) {
   constexpr int NN = Tree::NN;
-  if constexpr (NN <= unrolled_tree_nodes) {
+  if constexpr (NN <= (W == 1 ? unrolled_column_nodes : unrolled_tree_nodes)) {
     static_for<NN - 1>([&](auto i) FLANGE_INLINE_LAMBDA {
       tree_solve_block_row<Tree, W, true>(C, ldc, inv, X, ldx, c0, NN - 1 - decltype(i)::value);
     });
