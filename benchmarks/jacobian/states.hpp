@@ -1,5 +1,5 @@
 // The Jacobian benchmark's scenes of the scale benchmark's families and the
-// states it measures them at, shared by its units (chains.cpp, trees.cpp)
+// states it measures them at, shared by its units (chains.cpp, trees.cpp, large_trees.cpp)
 // and by tools/probes/small_jacobians.cpp, which counts their instructions.
 #pragma once
 #include <cmath>

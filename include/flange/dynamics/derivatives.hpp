@@ -997,10 +997,8 @@ template <class S, bool Articulated>
   // accelerations as they would be at v̇ = 0 (acc⁰; the true ones follow once
   // v̇ is known, below); each body's inertia, its wrench at acc⁰ and its
   // velocity coupling, at its link's last node (the others carry none).
-  // A link's nodes but its last (a ball's, rates in series) carry no body,
-  // and each one's only child is the next node of its link: its subtree is
-  // that node's, and so are its composite inertia, coupling and wrench. The
-  // passes keep these at the link's last node (top) alone.
+  // Composites, couplings and wrenches live at each link's last node (top:
+  // the header's "A link's nodes but its last").
   std::array<spatial<G>, NN> s, vel, acc, u, psi, F;
   std::array<world_inertia<G>, NN> Ic;
   std::array<velocity_coupling<G>, NN> Bc;
