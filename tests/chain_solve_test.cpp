@@ -154,11 +154,11 @@ TEST_CASE("chain_solve: both kernels solve a chain's M·X = B as a dense solve i
 #endif
 }
 
-TEST_CASE("chain_solve: the factor's pivots are the Cholesky factor's, and one that fails stops it") {
+TEST_CASE("chain_solve: the factor's pivots are the leaves-first LTDL factor's, and one that fails stops it") {
   std::mt19937 rng(3);
   constexpr int N = 9;
   random_chain<N, 6> chain(rng);
-  // D_k is the pivot M's leaves-first Cholesky factor meets at node k: the
+  // D_k is the pivot M's leaves-first LTDL factor meets at node k: the
   // Schur complement of the nodes below k, M_kk − M_k,b·M_bb⁻¹·M_b,k.
   {
     const auto diag = chain.diagonal();

@@ -1,7 +1,7 @@
 // The triangular solves of a tree's factored mass matrix (math/tree_solve.hpp),
 // both kernels (Eigen's rows, and AVX2 with fused multiply-adds where the
 // processor has them) and the dispatcher, against a dense solve in long
-// double of M = Cᵀ·C built from the same factor: chains of 1, 7 and 16
+// double of M = Lᵀ·D·L built from the same factor: chains of 1, 7 and 16
 // nodes and two branched trees, with as many columns as the Jacobian's
 // 2N + 1 (and the padding past them left alone by the first kernel, solved
 // as zeros by the second).
@@ -33,8 +33,10 @@ struct star_parents {
 
 using LMat = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
 
-/// A factor with the tree's zeros (C(k, a) for a = k or an ancestor),
-/// column-major, and the inverses of its pivots.
+/// A factor with the tree's zeros (L(k, a) ≠ 0 for a = k or an ancestor),
+/// as math/tree_solve.hpp holds it (column-major: U = D·L below the
+/// diagonal, L above it, transposed; D on it), and the inverses of its
+/// pivots D_k.
 template <class Tree>
 void random_factor(std::mt19937& rng, std::vector<double>& C, std::vector<double>& inv) {
   constexpr int N = Tree::NN - 1;
@@ -42,22 +44,30 @@ void random_factor(std::mt19937& rng, std::vector<double>& C, std::vector<double
   C.assign(N * N, 0.0);
   inv.assign(N + 1, 0.0);
   for (int k = 1; k <= N; ++k) {
-    C[(k - 1) + (k - 1) * N] = d(rng);
-    inv[k] = 1 / C[(k - 1) + (k - 1) * N];
-    for (int a = Tree::parent[k]; a != 0; a = Tree::parent[a]) C[(k - 1) + (a - 1) * N] = u(rng);
+    const double Dk = d(rng);
+    C[(k - 1) + (k - 1) * N] = Dk;
+    inv[k] = 1 / Dk;
+    for (int a = Tree::parent[k]; a != 0; a = Tree::parent[a]) {
+      const double L = u(rng);
+      C[(a - 1) + (k - 1) * N] = L;
+      C[(k - 1) + (a - 1) * N] = Dk * L;
+    }
   }
 }
 
 /// The largest |X − M⁻¹·B| over X's first cols columns, relative to the
-/// largest |M⁻¹·B|, with M = Cᵀ·C solved densely in long double.
+/// largest |M⁻¹·B|, with M = Lᵀ·D·L (L read above C's diagonal, D on it)
+/// solved densely in long double.
 double solve_error(int N, int cols, int ld, const std::vector<double>& C, const std::vector<double>& B,
                    const std::vector<double>& X) {
-  LMat Cl(N, N), Bl(N, cols);
-  for (int r = 0; r < N; ++r)
-    for (int c = 0; c < N; ++c) Cl(r, c) = C[r + c * N];
+  LMat L = LMat::Identity(N, N), D = LMat::Zero(N, N), Bl(N, cols);
+  for (int k = 0; k < N; ++k) {
+    D(k, k) = C[k + k * N];
+    for (int a = 0; a < k; ++a) L(k, a) = C[a + k * N];
+  }
   for (int r = 0; r < N; ++r)
     for (int c = 0; c < cols; ++c) Bl(r, c) = B[r * ld + c];
-  const LMat M = Cl.transpose() * Cl;
+  const LMat M = L.transpose() * D * L;
   const LMat ref = M.llt().solve(Bl);
   long double worst = 0, scale = ref.cwiseAbs().maxCoeff();
   for (int r = 0; r < N; ++r)

@@ -32,10 +32,15 @@ void run() {
   std::vector<double> C(N * N, 0.0), inv(N + 1), B(N * row, 0.0);
   // On a 32-byte boundary, as simulate/jacobian.hpp places its rows.
   alignas(32) static std::array<double, N * row> X, Y;
+  // The factor as math/tree_solve.hpp holds it: D on the diagonal, U = D·L
+  // below it, L above it.
   for (int k = 0; k < N; ++k) {
     C[k + k * N] = 1 + 0.1 * k;
     inv[k + 1] = 1 / C[k + k * N];
-    for (int a = 0; a < k; ++a) C[k + a * N] = 0.3 * std::sin(1.3 * k + 0.7 * a);
+    for (int a = 0; a < k; ++a) {
+      C[a + k * N] = 0.3 * std::sin(1.3 * k + 0.7 * a);
+      C[k + a * N] = C[k + k * N] * C[a + k * N];
+    }
   }
   for (int r = 0; r < N; ++r)
     for (int c = 0; c < cols; ++c) B[r * row + c] = std::cos(0.9 * r + 0.4 * c);

@@ -32,7 +32,7 @@
 // from the same passes: τ⁰ at v̇ = 0, v̇ = M⁻¹·(Q − τ⁰), then the
 // accelerations corrected. One forward pass over the links, one backward pass that fills
 // the pairs of a link and its ancestors (O(N²) on a chain), and one solve of
-// M with 2N + 1 right-hand sides: by M's Cholesky factor (O(N³) on a chain),
+// M with 2N + 1 right-hand sides: by M's LTDL factor (O(N³) on a chain),
 // or on a chain of 24 nodes or more (12 in the plane) by its articulated-body
 // factor (math/chain_solve.hpp, O(N²)). A pivot of either factor is tested
 // against the inertia its node's composite has about the fixed point. The
@@ -647,7 +647,7 @@ inline constexpr auto translating_nodes = [] {
 
 /// Whether acceleration_derivatives solves with M's articulated-body factor
 /// (math/chain_solve.hpp) rather than with the triangular solves of its
-/// Cholesky factor (math/tree_solve.hpp): on a chain of at least 4·C nodes
+/// LTDL factor (math/tree_solve.hpp): on a chain of at least 4·C nodes
 /// (C numbers a spatial vector: 24 nodes in space, 12 in the plane), where
 /// its 4·C multiply-adds a node and column are fewer than their N.
 template <class S>
@@ -708,16 +708,18 @@ constexpr bool unrolled_factor() {
          (!derivative_nodes<S>::chain || S::n_v >= 4);
 }
 
-/// M = Cᵀ·C in place, leaves first (Featherstone's LTL: C has the tree's
-/// zeros), written out from factor_ancestry: every update's place a
-/// constant. The same products in the same order as the loops of
-/// acceleration_derivatives_passes that walk the ancestors. Returns 0, or
-/// the node whose pivot is at or below tol of its yardstick (M(k − 1, k − 1)
-/// left as it was). Compiled once, not in each of the passes' two builds:
-/// written out, it is a good part of their compile time.
+/// M = Lᵀ·D·L in place, leaves first (Featherstone's LTDL: L has the tree's
+/// zeros), held as math/tree_solve.hpp reads it (U = D·L below the diagonal,
+/// L above it, inv[k] = 1 / D_k), written out from factor_ancestry: every
+/// update's place a constant. The same products in the same order as the
+/// loops of acceleration_derivatives_passes that walk the ancestors.
+/// Returns 0, or the node whose pivot is at or below tol of its yardstick
+/// (M(k − 1, k − 1) left as it was). Compiled once, not in each of the
+/// passes' two builds: written out, it is a good part of their compile time.
 template <class S>
 [[gnu::noinline]] int factor_tree_written_out(Eigen::Matrix<double, S::n_v, S::n_v>& M,
-                                              const std::array<double, S::n_v>& yard, double tol) {
+                                              const std::array<double, S::n_v>& yard, double tol,
+                                              std::array<double, S::n_v + 1>& inv) {
   constexpr int NN = S::n_v + 1;
   using anc = factor_ancestry<S>;
   int failed = 0;
@@ -728,16 +730,15 @@ template <class S>
         failed = k;
         return false;
       }
-      const double d = std::sqrt(M(k - 1, k - 1));
-      M(k - 1, k - 1) = d;
-      std::array<double, depth> c;
+      const double e = inv[k] = 1 / M(k - 1, k - 1);
+      std::array<double, depth> c;  // row k of L
       [&]<int... A>(std::integer_sequence<int, A...>) FLANGE_INLINE_LAMBDA {
-        ((c[A] = M(k - 1, anc::up[k][A]) /= d), ...);
+        ((c[A] = M(anc::up[k][A], k - 1) = M(k - 1, anc::up[k][A]) * e), ...);
       }(std::make_integer_sequence<int, depth>{});
-      // Pair P of the triangle a ≤ b < depth, row by row.
+      // Pair P of the triangle a ≤ b < depth, row by row: L(k, a)·U(k, b).
       [&]<int... P>(std::integer_sequence<int, P...>) FLANGE_INLINE_LAMBDA {
         ((M(anc::up[k][anc::template pair<depth, P>.first], anc::up[k][anc::template pair<depth, P>.second]) -=
-          c[anc::template pair<depth, P>.first] * c[anc::template pair<depth, P>.second]),
+          c[anc::template pair<depth, P>.first] * M(k - 1, anc::up[k][anc::template pair<depth, P>.second])),
          ...);
       }(std::make_integer_sequence<int, depth * (depth + 1) / 2>{});
       return true;
@@ -940,7 +941,7 @@ using derivative_rows = Eigen::Matrix<double, S::n_v, tree_solve_row(2 * S::n_v 
 /// Returns the pivot of M that failed (index ≥ 0: out and vdot are not
 /// written; index is its rate), as the mass-matrix solve reports it.
 /// Articulated: M⁻¹ by its articulated-body factor (math/chain_solve.hpp, a
-/// chain's), else by its Cholesky factor; the two agree to round-off.
+/// chain's), else by its LTDL factor; the two agree to round-off.
 /// Always inlined into the two functions that compile it (below): one for
 /// the instructions every x86-64 runs, one for AVX2.
 template <class S, bool Articulated>
@@ -1447,12 +1448,14 @@ template <class S, bool Articulated>
   }
 
   // M's factor: on a long chain (Articulated) the articulated-body factor
-  // the pass up the tree carried; else M = Cᵀ·C (Featherstone's LTL
-  // factorization, leaves first: C has the tree's zeros, where a root-first
-  // factor would join siblings). Either way a pivot at or below
-  // pivot_tolerance of its yardstick stops it (a joint that moves nothing
-  // with inertia, or whose motion repeats others').
-  std::array<double, NN> inv;  // 1 / C(k − 1, k − 1), the Cholesky factor's
+  // the pass up the tree carried; else M = Lᵀ·D·L (Featherstone's LTDL
+  // factorization, leaves first: L has the tree's zeros, where a root-first
+  // factor would join siblings), in M as math/tree_solve.hpp reads it: U =
+  // D·L below the diagonal (what the elimination leaves there), L above it.
+  // Either way a pivot at or below pivot_tolerance of its yardstick stops it
+  // (a joint that moves nothing with inertia, or whose motion repeats
+  // others').
+  std::array<double, NN> inv;  // 1 / D_k
   if constexpr (Articulated) {
     if (chain_M.failed >= 0) [[unlikely]]
       return {rate[chain_M.failed + 1], chain_M.failed_d, yard[chain_M.failed]};
@@ -1463,37 +1466,35 @@ template <class S, bool Articulated>
     for (int k = N - 1; k >= 0; --k) {
       if (!(M(k, k) > tol * yard[k])) [[unlikely]]
         return {rate[k + 1], M(k, k), yard[k]};
-      const double d = std::sqrt(M(k, k)), e = 1 / d;
-      M(k, k) = d;
-      for (int i = 0; i < k; ++i) c[i] = M(k, i) = M(k, i) * e;
+      const double e = inv[k + 1] = 1 / M(k, k);
+      for (int i = 0; i < k; ++i) c[i] = M(i, k) = M(k, i) * e;
       for (int j = 0; j < k; ++j)
-        for (int i = j; i < k; ++i) M(i, j) -= c[i] * c[j];
+        for (int i = j; i < k; ++i) M(i, j) -= c[i] * M(k, j);
     }
   } else if constexpr (unrolled_factor<S>()) {
-    if (const int k = factor_tree_written_out<S>(M, yard, tol); k != 0) [[unlikely]]
+    if (const int k = factor_tree_written_out<S>(M, yard, tol, inv); k != 0) [[unlikely]]
       return {rate[k], M(k - 1, k - 1), yard[k - 1]};
   } else {
     for (int k = NN - 1; k >= 1; --k) {
       if (!(M(k - 1, k - 1) > tol * yard[k - 1])) [[unlikely]]
         return {rate[k], M(k - 1, k - 1), yard[k - 1]};
-      const double d = std::sqrt(M(k - 1, k - 1));
-      M(k - 1, k - 1) = d;
+      const double e = inv[k] = 1 / M(k - 1, k - 1);
       // k's ancestors, nearest first (factor_ancestry), and row k's entries
       // for them: each pair's update reads two lists, no walk up the tree.
       using anc = factor_ancestry<S>;
       const auto& up = anc::up[k];
       const int depth = anc::depth[k];
-      std::array<double, NN> c;
-      for (int a = 0; a < depth; ++a) c[a] = M(k - 1, up[a]) /= d;
+      std::array<double, NN> c, w;  // rows k of L and of U
+      for (int a = 0; a < depth; ++a) c[a] = M(up[a], k - 1) = (w[a] = M(k - 1, up[a])) * e;
       for (int a = 0; a < depth; ++a) {
         double* row = &M(up[a], 0);
         const double ca = c[a];
-        for (int b = a; b < depth; ++b) row[up[b] * N] -= ca * c[b];
+        for (int b = a; b < depth; ++b) row[up[b] * N] -= ca * w[b];
       }
     }
   }
   // The solves: the articulated-body factor's two sweeps
-  // (math/chain_solve.hpp), or both triangular solves of the Cholesky
+  // (math/chain_solve.hpp), or both triangular solves of the LTDL
   // factor with the tree's zeros (math/tree_solve.hpp, tree giving each
   // node's descendants and ancestors).
   using tree = node_runs<S>;
@@ -1502,7 +1503,6 @@ template <class S, bool Articulated>
   if constexpr (Articulated) {
     chain_solve_column(chain_M, b.data());
   } else {
-    for (int k = 1; k < NN; ++k) inv[k] = 1 / M(k - 1, k - 1);
     tree_solve_block<tree, 1>(M.data(), N, inv.data(), b.data(), 1, 0);
   }
   if (vdot)

@@ -16,7 +16,7 @@
 // about 4·C multiply-adds a node and column where the triangular solves of
 // M's factor (math/tree_solve.hpp) take N: dynamics/derivatives.hpp solves
 // a long chain's 2N + 1 columns of ∂v̇/∂x this way (docs/performance.md,
-// "The Jacobian"). D_k is the pivot M's leaves-first Cholesky factor would
+// "The Jacobian"). D_k is the pivot M's leaves-first LTDL factor (D) would
 // meet at node k, and a pivot at or below tol of M_kk stops the factor as it
 // stops that one. The factor is whole (factor) or a node at a time (start,
 // node, finish), for a pass from the last node up to carry.

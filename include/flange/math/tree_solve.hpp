@@ -1,14 +1,22 @@
-// Solving M·X = B in place for many right-hand sides, where M = Cᵀ·C is a
-// tree's mass matrix factored leaves first (Featherstone's LTL: C has the
-// tree's zeros, C(k, a) ≠ 0 only for a = k or an ancestor a of k): both
-// triangular solves, as sums into one row of X at a time,
+// Solving M·X = B in place for many right-hand sides, where M = Lᵀ·D·L is a
+// tree's mass matrix factored leaves first without square roots
+// (Featherstone's LTDL: L is unit and has the tree's zeros, L(k, a) ≠ 0 only
+// for a = k or an ancestor a of k; D is diagonal). The factor is held in one
+// square array C, column-major: below the diagonal U = D·L, what the
+// elimination leaves in M (C(k, a) = D_k·L(k, a), a above k), and above it
+// L itself, transposed (C(a, k) = L(k, a)); inv[k] = 1 / D_k. Both
+// triangular solves, as sums into one row of X at a time over a block of X's
+// columns, each reading its factors down column k of C, one number apart:
 //
-//   Cᵀ·Y = B from the leaves:  y_k = (b_k − Σ_{c below k} C(c, k)·y_c) / C(k, k)
-//   C·X = Y from the root:     x_k = (y_k − Σ_{a above k} C(k, a)·x_a) / C(k, k)
+//   Lᵀ·D·Y = B from the leaves:  y_k = (b_k − Σ_{c below k} C(c, k)·y_c) / D_k
+//   L·X = Y from the root:        x_k = y_k − Σ_{a above k} C(a, k)·x_a
 //
-// over a block of X's columns. dynamics/derivatives.hpp solves this way for
-// the 2N + 1 columns of ∂v̇/∂x: N²·(2N + 1) multiply-adds on a chain of N
-// rates, a large share of the Jacobian's time for long chains.
+// Against a Cholesky factor (M = Cᵀ·C) the factor takes no square root, on
+// whose latency each node's pivot waited, and the rows from the root are
+// not scaled (docs/performance.md, "The Jacobian"). dynamics/derivatives.hpp
+// solves this way for the 2N + 1 columns of ∂v̇/∂x: N²·(2N + 1)
+// multiply-adds on a chain of N rates, a large share of the Jacobian's time
+// for long chains.
 //
 // The tree is a type whose tables are known at compile time (tree_runs
 // below, from the nodes' parents: each node's descendants and ancestors as
@@ -134,40 +142,35 @@ struct tree_runs {
   }
 };
 
-/// The factor entries that multiply run r's rows in row k's sum, the
-/// stride between them run_stride<FromLeaves>(ldc): from the leaves
-/// (Cᵀ·Y = B, r below k) C(d, k) down column k; from the root (C·X = Y, r
-/// above k) C(k, a) along row k.
-template <bool FromLeaves>
+/// The factor entries that multiply run r's rows in row k's sum, one
+/// number apart down column k of C: from the leaves (r below k) U(d, k)
+/// below the diagonal, from the root (r above k) L(k, a) above it.
 FLANGE_INLINE const double* run_factors(const double* C, int ldc, int k, node_run r) {
-  return FromLeaves ? C + (r.lo - 1) + (k - 1) * ldc : C + (k - 1) + (r.lo - 1) * ldc;
-}
-template <bool FromLeaves>
-FLANGE_INLINE int run_stride(int ldc) {
-  return FromLeaves ? 1 : ldc;
+  return C + (r.lo - 1) + (k - 1) * ldc;
 }
 
 /// Columns c0 … c0 + W of X (rows of ldx numbers, row k − 1 node k's):
-/// C(r, c) = C[r + c·ldc] (column-major), inv[k] = 1 / C(k − 1, k − 1).
-/// Row k from the leaves or from the root, in two sums in turn, so that
-/// each waits on its own last product only; tree_solve_block: every row.
+/// C(r, c) = C[r + c·ldc] (column-major, the factor as the header says),
+/// inv[k] = 1 / D_k. Row k from the leaves or from the root, in two sums in
+/// turn, so that each waits on its own last product only; tree_solve_block:
+/// every row.
 template <class Tree, int W, bool FromLeaves>
 FLANGE_INLINE void tree_solve_block_row(const double* C, int ldc, const double* inv, double* X, int ldx, int c0,
                                         int k) {
   using Row = Eigen::Matrix<double, 1, W>;
   auto row = [&](int n) FLANGE_INLINE_LAMBDA { return Eigen::Map<Row>(X + (n - 1) * ldx + c0); };
   Row acc = row(k), acc2 = Row::Zero();
-  const int ms = run_stride<FromLeaves>(ldc);
   for (auto [r, last] = Tree::template runs_of<FromLeaves>(k); r != last; ++r) {
-    const double* m = run_factors<FromLeaves>(C, ldc, k, *r);
+    const double* m = run_factors(C, ldc, k, *r);
     int d = r->lo;
-    for (; d + 1 < r->hi; d += 2, m += 2 * ms) {
+    for (; d + 1 < r->hi; d += 2, m += 2) {
       acc -= m[0] * row(d);
-      acc2 -= m[ms] * row(d + 1);
+      acc2 -= m[1] * row(d + 1);
     }
     if (d < r->hi) acc -= m[0] * row(d);
   }
-  row(k) = (acc + acc2) * inv[k];
+  if constexpr (FromLeaves) row(k) = (acc + acc2) * inv[k];
+  else row(k) = acc + acc2;
 }
 /// Trees of at most this many nodes (the root included) are walked with
 /// each row's number a constant: every run's bounds known, each sum written
@@ -233,12 +236,16 @@ template <int V>
   }
 }
 
-/// Row xk ← (the two sums added) / its pivot (s = 1 / C(k, k)).
-template <int V>
+/// Row xk ← the two sums added, from the leaves divided by its pivot
+/// (s = 1 / D_k).
+template <int V, bool FromLeaves>
 [[gnu::target("avx2,fma"), gnu::always_inline]] inline void tree_solve_finish(__m256d (&acc)[2][V], double s,
                                                                              double* xk) {
   const __m256d d = _mm256_set1_pd(s);
-  for (int v = 0; v < V; ++v) _mm256_storeu_pd(xk + 4 * v, _mm256_mul_pd(_mm256_add_pd(acc[0][v], acc[1][v]), d));
+  for (int v = 0; v < V; ++v) {
+    const __m256d sum = _mm256_add_pd(acc[0][v], acc[1][v]);
+    _mm256_storeu_pd(xk + 4 * v, FromLeaves ? _mm256_mul_pd(sum, d) : sum);
+  }
 }
 
 /// The sums start from row xk.
@@ -251,8 +258,7 @@ template <int V>
 }
 
 /// Row k of the tile of X's columns c0 … c0 + 4·V (rows of ldx numbers):
-/// from the leaves (Cᵀ·Y = B: the nodes below k) or from the root (C·X = Y:
-/// the nodes above k).
+/// from the leaves (the nodes below k) or from the root (the nodes above k).
 template <class Tree, int V, int ldx, bool FromLeaves>
 [[gnu::target("avx2,fma"), gnu::always_inline]] inline void tree_solve_row_avx2(const double* C, int ldc,
                                                                                const double* inv, double* X, int c0,
@@ -261,9 +267,8 @@ template <class Tree, int V, int ldx, bool FromLeaves>
   double* xk = X + (k - 1) * ldx + c0;
   tree_solve_start<V>(acc, xk);
   for (auto [r, last] = Tree::template runs_of<FromLeaves>(k); r != last; ++r)
-    tree_solve_run<V>(acc, run_factors<FromLeaves>(C, ldc, k, *r), run_stride<FromLeaves>(ldc),
-                      X + (r->lo - 1) * ldx + c0, ldx, r->hi - r->lo);
-  tree_solve_finish<V>(acc, inv[k], xk);
+    tree_solve_run<V>(acc, run_factors(C, ldc, k, *r), 1, X + (r->lo - 1) * ldx + c0, ldx, r->hi - r->lo);
+  tree_solve_finish<V, FromLeaves>(acc, inv[k], xk);
 }
 
 /// Rows a and b of the tile, b next to a on a's far side (from the leaves
@@ -282,11 +287,10 @@ template <class Tree, int V, int ldx, bool FromLeaves>
     sa[v] = _mm256_loadu_pd(xa + 4 * v);
     sb[v] = _mm256_loadu_pd(xb + 4 * v);
   }
-  const int ms = run_stride<FromLeaves>(ldc);
   for (auto [r, last] = Tree::template runs_of<FromLeaves>(a); r != last; ++r) {
-    const double *ma = run_factors<FromLeaves>(C, ldc, a, *r), *mb = run_factors<FromLeaves>(C, ldc, b, *r);
+    const double *ma = run_factors(C, ldc, a, *r), *mb = run_factors(C, ldc, b, *r);
     const double* x = X + (r->lo - 1) * ldx + c0;
-    for (int i = 0, n = r->hi - r->lo; i < n; ++i, ma += ms, mb += ms, x += ldx) {
+    for (int i = 0, n = r->hi - r->lo; i < n; ++i, ++ma, ++mb, x += ldx) {
       const __m256d fa = _mm256_set1_pd(*ma), fb = _mm256_set1_pd(*mb);
       for (int v = 0; v < V; ++v) {
         const __m256d xv = _mm256_loadu_pd(x + 4 * v);
@@ -296,11 +300,12 @@ template <class Tree, int V, int ldx, bool FromLeaves>
     }
   }
   const __m256d da = _mm256_set1_pd(inv[a]), db = _mm256_set1_pd(inv[b]);
-  const __m256d fab = _mm256_set1_pd(*run_factors<FromLeaves>(C, ldc, b, node_run{a, a + 1}));
+  const __m256d fab = _mm256_set1_pd(*run_factors(C, ldc, b, node_run{a, a + 1}));
   for (int v = 0; v < V; ++v) {
-    const __m256d ra = _mm256_mul_pd(sa[v], da);
+    const __m256d ra = FromLeaves ? _mm256_mul_pd(sa[v], da) : sa[v];
     _mm256_storeu_pd(xa + 4 * v, ra);
-    _mm256_storeu_pd(xb + 4 * v, _mm256_mul_pd(_mm256_fnmadd_pd(fab, ra, sb[v]), db));
+    const __m256d rb = _mm256_fnmadd_pd(fab, ra, sb[v]);
+    _mm256_storeu_pd(xb + 4 * v, FromLeaves ? _mm256_mul_pd(rb, db) : rb);
   }
 }
 
