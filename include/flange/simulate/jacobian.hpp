@@ -263,26 +263,30 @@ void jacobian_analytic(const S& scene, double t, const State& x, jacobian_matrix
       constexpr int qa = LI::joint_type::quaternion_at, qQ = LI::q + qa, vw = LI::v + qa;
       const double* Q = xs + qQ;
       const double* w = xs + nq + vw;
-      for (int m = 0; m < 4; ++m) {
-        const double e[4] = {double(m == 0), double(m == 1), double(m == 2), double(m == 3)};
-        double c[4];
-        quaternion::rate(e, w, c);
-        for (int k = 0; k < 4; ++k) J(qQ + k, qQ + m) = c[k];
-      }
-      for (int m = 0; m < 3; ++m) {
-        const double e[3] = {double(m == 0), double(m == 1), double(m == 2)};
-        double c[4];
-        quaternion::rate(Q, e, c);
-        for (int k = 0; k < 4; ++k) J(qQ + k, nq + vw + m) = c[k];
-      }
-      const double x = Q[0], y = Q[1], z = Q[2], s = Q[3], k2 = 2 / (x * x + y * y + z * z + s * s);
-      Eigen::Matrix<double, 3, 4> T;  // ∂δ/∂Q
-      T << s, z, -y, -x,  //
-          -z, s, x, -y,   //
-          y, -x, s, -z;
-      T *= k2;
-      for (int r = 0; r < nv; ++r)
-        J.row(nq + row[r]).template segment<4>(qQ) = d.row(r).template segment<3>(vw) * T;
+      const double x = Q[0], y = Q[1], z = Q[2], s = Q[3];
+      // quaternion::rate's q̇ = ½·Q ⊗ (ω, 0), written out: ∂q̇/∂Q (its
+      // columns x, y, z, s) and ∂q̇/∂ω, each entry one number (the rate
+      // taken along a unit vector multiplies by its zeros).
+      const double hw[3] = {0.5 * w[0], 0.5 * w[1], 0.5 * w[2]};
+      const double dQ[4][4] = {{0, hw[2], -hw[1], hw[0]},
+                               {-hw[2], 0, hw[0], hw[1]},
+                               {hw[1], -hw[0], 0, hw[2]},
+                               {-hw[0], -hw[1], -hw[2], 0}};
+      const double hx = 0.5 * x, hy = 0.5 * y, hz = 0.5 * z, hs = 0.5 * s;
+      const double dw[4][3] = {{hs, -hz, hy}, {hz, hs, -hx}, {-hy, hx, hs}, {-hx, -hy, -hz}};
+      for (int m = 0; m < 4; ++m)
+        for (int k = 0; k < 4; ++k) at(qQ + k, qQ + m) = dQ[k][m];
+      for (int m = 0; m < 3; ++m)
+        for (int k = 0; k < 4; ++k) at(qQ + k, nq + vw + m) = dw[k][m];
+      const double k2 = 2 / (x * x + y * y + z * z + s * s);
+      // ∂δ/∂Q, column m: ∂v̇/∂Q_m = ∂v̇/∂δ · T(:, m), written down J's
+      // column a row of d at a time.
+      const double T[3][4] = {{k2 * s, k2 * z, -k2 * y, -k2 * x},
+                              {-k2 * z, k2 * s, k2 * x, -k2 * y},
+                              {k2 * y, -k2 * x, k2 * s, -k2 * z}};
+      for (int m = 0; m < 4; ++m)
+        for (int r = 0; r < nv; ++r)
+          at(nq + row[r], qQ + m) = d(r, vw) * T[0][m] + d(r, vw + 1) * T[1][m] + d(r, vw + 2) * T[2][m];
     }
   });
   if (dfdt) {
