@@ -423,6 +423,19 @@ FLANGE_INLINE spatial<G> column_motion_cross(int k, const spatial<G>& s, const s
   }
   return motion_cross(s, v);
 }
+/// x + s·c.
+template <class G>
+FLANGE_INLINE spatial<G> plus_column(int k, const spatial<G>& x, const spatial<G>& s, double c) {
+  if constexpr (std::is_same_v<G, space>) {
+    if (k >= 0) {
+      spatial<G> r = x;
+      r.a[k] += s.a[k] * c;
+      return r;
+    }
+    if (k == translation_column) return {x.a, plus(x.l, s.l * c)};
+  }
+  return x + s * c;
+}
 /// s ×* f.
 template <class G>
 FLANGE_INLINE spatial<G> column_force_cross(int k, const spatial<G>& s, const spatial<G>& f) {
@@ -1063,7 +1076,6 @@ template <class S, bool Articulated>
                    : any_column;
     return k;
   }();
-  auto shape_of = [](int n) FLANGE_INLINE_LAMBDA { return shaped ? shape[n] : any_column; };
   // f(j, k) for node `from` and each of its ancestors, nearest first, k the
   // shape of j's column (a constant): where columns are shaped, the trunk's
   // nodes written out, each with j a constant; from a trunk node given as a
@@ -1086,10 +1098,23 @@ template <class S, bool Articulated>
       for (int j = from; j != 0; j = parent[j]) f(j, std::integral_constant<int, any_column>{});
     }
   };
-  // step(n, k) for every node n, children first, k the shape of its column
-  // (a constant): where columns are shaped, the trunk's nodes written out,
-  // each n a constant (an integral_constant), so that its products with its
-  // column are its shape's alone, with no test at run time.
+  // step(n, k) for every node n, parents first or children first, k the
+  // shape of its column (a constant): where columns are shaped, the trunk's
+  // nodes written out, each n a constant (an integral_constant), so that its
+  // products with its column are its shape's alone, with no test at run
+  // time.
+  auto parents_first = [&](auto&& step) FLANGE_INLINE_LAMBDA {
+    if constexpr (shaped) {
+      static_for<trunk>([&](auto t) FLANGE_INLINE_LAMBDA {
+        constexpr int n = 1 + decltype(t)::value;
+        step(std::integral_constant<int, n>{}, std::integral_constant<int, shape[n]>{});
+      });
+      for (int n = trunk + 1; n < NN; ++n) step(n, std::integral_constant<int, any_column>{});
+    } else {
+      over_nodes<NN, false, in_plane>(
+          [&](const int n) FLANGE_INLINE_LAMBDA { step(n, std::integral_constant<int, any_column>{}); });
+    }
+  };
   auto children_first = [&](auto&& step) FLANGE_INLINE_LAMBDA {
     if constexpr (shaped) {
       for (int n = NN - 1; n > trunk; --n) step(n, std::integral_constant<int, any_column>{});
@@ -1115,7 +1140,7 @@ template <class S, bool Articulated>
     if constexpr (link1_axes) acc[0].l = rotate(R[0], G::lin_of(scene.model().minus_g));
     else acc[0].l = G::lin_of(scene.model().minus_g);
   }
-  over_nodes<NN, false, in_plane>([&](const int n) FLANGE_INLINE_LAMBDA {
+  parents_first([&](const auto n, auto kn) FLANGE_INLINE_LAMBDA {
     const int L = node_link[n], P = parent[n], V = vparent[n];
     // A column's part that is zero by type stays zero: no turn of it; nor
     // of link 1's columns in its own axes.
@@ -1124,11 +1149,17 @@ template <class S, bool Articulated>
     else if (parts.no_lin[n]) s[n] = {turn(R[L], col[n].a), cross(r[L], turn(R[L], col[n].a))};
     else s[n] = {turn(R[L], col[n].a), plus(rotate(R[L], col[n].l), cross(r[L], turn(R[L], col[n].a)))};
     const double qd = v[rate[n]];
-    vel[n] = vel[P] + s[n] * qd;
-    if (!translating[V]) u[n] = motion_cross(s[n], vel[V]);
-    else if (translating[n]) u[n] = zero;
-    else u[n] = {G::zero_ang(), cross(s[n].a, vel[V].l)};
-    acc[n] = acc[P] - u[n] * qd;  // v_L × s_L = v_V × s_L
+    vel[n] = plus_column<G>(kn, vel[P], s[n], qd);
+    if (!translating[V]) {
+      u[n] = column_motion_cross<G>(kn, s[n], vel[V]);
+    } else if (translating[n]) {
+      u[n] = zero;
+    } else if constexpr (decltype(kn)::value >= 0) {
+      u[n] = {G::zero_ang(), axis_cross(kn, s[n].a[kn], vel[V].l)};
+    } else {
+      u[n] = {G::zero_ang(), cross(s[n].a, vel[V].l)};
+    }
+    acc[n] = translating[n] ? acc[P] : acc[P] - u[n] * qd;  // v_L × s_L = v_V × s_L
     if (one_node_links || n == last[L]) {
       Ic[n] = link1_axes && L == 1 ? G::at_link(scene.model().link[1])
                                    : G::to_world(scene.model().link[L], R[L], r[L]);
@@ -1146,11 +1177,11 @@ template <class S, bool Articulated>
   // ½·s × (v_L − v_V) to it; a node of one rate's is u.
   std::conditional_t<balls, std::array<spatial<G>, NN>, std::array<int, 0>> uv_ball;
   if constexpr (balls)
-    for (int n = 1; n < NN; ++n) {
+    parents_first([&](const auto n, auto kn) FLANGE_INLINE_LAMBDA {
       uv_ball[n] = u[n];
       if (nodes::table.ball[n])
-        uv_ball[n] += column_motion_cross<G>(shape_of(n), s[n], vel[last[node_link[n]]] - vel[vparent[n]]) * 0.5;
-    }
+        uv_ball[n] += column_motion_cross<G>(kn, s[n], vel[last[node_link[n]]] - vel[vparent[n]]) * 0.5;
+    });
   auto uv = [&](int n) -> const spatial<G>& {
     if constexpr (balls) return uv_ball[n];
     else return u[n];
@@ -1509,12 +1540,18 @@ template <class S, bool Articulated>
     for (int n = 1; n < NN; ++n) vdot[rate[n]] = b[n - 1];
   std::array<spatial<G>, NN> da;
   da[0] = {G::zero_ang(), G::lin::Zero()};
-  over_nodes<NN, false, in_plane>([&](const int n) FLANGE_INLINE_LAMBDA {
+  parents_first([&](const auto n, auto kn) FLANGE_INLINE_LAMBDA {
     const int P = parent[n], V = vparent[n];
-    da[n] = da[P] + s[n] * b[n - 1];
-    if (!translating[V]) psi[n] = motion_cross(s[n], acc[V] + da[V]) - motion_cross(u[n], vel[V]);
-    else if (translating[n]) psi[n] = zero;
-    else psi[n] = {G::zero_ang(), cross(s[n].a, plus(acc[V].l, da[V].l))};
+    da[n] = plus_column<G>(kn, da[P], s[n], b[n - 1]);
+    if (!translating[V]) {
+      psi[n] = column_motion_cross<G>(kn, s[n], acc[V] + da[V]) - motion_cross(u[n], vel[V]);
+    } else if (translating[n]) {
+      psi[n] = zero;
+    } else if constexpr (decltype(kn)::value >= 0) {
+      psi[n] = {G::zero_ang(), axis_cross(kn, s[n].a[kn], plus(acc[V].l, da[V].l))};
+    } else {
+      psi[n] = {G::zero_ang(), cross(s[n].a, plus(acc[V].l, da[V].l))};
+    }
     if constexpr (stacked) {
       const auto pn = numbers(psi[n]);
       for (int c = 0; c < C; ++c) pc[c][n] = pn[c];
