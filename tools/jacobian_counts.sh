@@ -8,8 +8,8 @@
 # scene, "jacobian <scene> jacobian_instructions=<j>
 # derivative_instructions=<d> ratio=<j/d>": each count the difference between
 # runs of 2000 and 1000 calls over 1000, so that start-up does not count.
-# Instructions are not time (the gantry crane's Jacobian is 3.2 derivatives
-# in instructions and 4.2 in time: docs/performance.md, "The Jacobian"), but
+# Instructions are not time (one leg on a floating base is 3.7 derivatives
+# in instructions and 4.7 in time: docs/performance.md, "The Jacobian"), but
 # they do not move with the machine or with where the code lies.
 set -euo pipefail
 scenes=()

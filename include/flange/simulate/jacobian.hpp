@@ -197,11 +197,11 @@ inline constexpr std::array<int, 2 * S::n_v> derivative_column_place = [] {
 /// Whether jacobian() takes the analytic derivatives: wherever they apply,
 /// but for a scene of one rate, or of one link with force elements, where
 /// the passes' fixed cost (and the loads' dual numbers) exceed dual numbers
-/// through the derivative: the one-link chain of a run-time axis 98
-/// against 83 ns, the paper's arm 71 against 27 ns, a ball on the ground 2.1
-/// against 1.5 µs; a free body without loads (six rates) is the other way
-/// round, 0.74 against 1.24 µs (build/benchmarks/jacobian's analytic_ns and
-/// dual_ns; docs/performance.md, "The Jacobian").
+/// through the derivative: the one-link chain of a run-time axis 89
+/// against 83 ns, the paper's arm 60 against 27 ns, a ball on the ground 1.9
+/// against 1.7 µs; a free body without loads (six rates) is the other way
+/// round, 0.33 against 1.20 µs (build/benchmarks/jacobian's analytic_ns and
+/// dual_ns, medians of nine runs; docs/performance.md, "The Jacobian").
 template <class S>
 constexpr bool jacobian_takes_analytic() {
   if constexpr (!analytic_derivatives<S>()) {
