@@ -1,6 +1,6 @@
 // The analytic Jacobian's two solves of M (dynamics/derivatives.hpp): its
 // articulated-body factor (math/chain_solve.hpp), which long chains take,
-// against its Cholesky factor (math/tree_solve.hpp), which the other tests
+// against its LTDL factor (math/tree_solve.hpp), which the other tests
 // hold to the dual-number Jacobian, on short chains of every node kind; the
 // long chains that take it against central differences and the scene's own
 // derivative; and a singular M stopping it with the derivative's reason.
@@ -17,7 +17,7 @@ using namespace flange;
 namespace {
 
 /// Both solves' rows and v̇ at three random states: equal to 1e-12 of the
-/// largest entry (the bar jacobian_agree.hpp holds the Cholesky solve's
+/// largest entry (the bar jacobian_agree.hpp holds the LTDL solve's
 /// rows to against dual numbers; these chains' M are well conditioned).
 template <class S>
 void solves_agree(const S& scene, std::mt19937& rng) {
@@ -73,7 +73,7 @@ void long_chain_agrees(const S& scene, std::mt19937& rng) {
 
 }  // namespace
 
-TEST_CASE("the articulated-body factor and the Cholesky factor give the passes the same derivatives") {
+TEST_CASE("the articulated-body factor and the LTDL factor give the passes the same derivatives") {
   std::mt19937 rng(24);
   const auto p7 = models::random_chain_params<7>(rng);
   solves_agree(models::chain<7, models::runtime_axes>(p7), rng);
