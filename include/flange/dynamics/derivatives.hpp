@@ -423,6 +423,13 @@ FLANGE_INLINE spatial<G> column_motion_cross(int k, const spatial<G>& s, const s
   }
   return motion_cross(s, v);
 }
+/// (0, s_a × x): s × (0, x) for a column s whose own translation is left out.
+template <class G>
+FLANGE_INLINE spatial<G> column_angular_cross(int k, const spatial<G>& s, const typename G::lin& x) {
+  if constexpr (std::is_same_v<G, space>)
+    if (k >= 0) return {G::zero_ang(), axis_cross(k, s.a[k], x)};
+  return {G::zero_ang(), cross(s.a, x)};
+}
 /// x + s·c.
 template <class G>
 FLANGE_INLINE spatial<G> plus_column(int k, const spatial<G>& x, const spatial<G>& s, double c) {
@@ -1154,10 +1161,8 @@ template <class S, bool Articulated>
       u[n] = column_motion_cross<G>(kn, s[n], vel[V]);
     } else if (translating[n]) {
       u[n] = zero;
-    } else if constexpr (decltype(kn)::value >= 0) {
-      u[n] = {G::zero_ang(), axis_cross(kn, s[n].a[kn], vel[V].l)};
     } else {
-      u[n] = {G::zero_ang(), cross(s[n].a, vel[V].l)};
+      u[n] = column_angular_cross<G>(kn, s[n], vel[V].l);
     }
     acc[n] = translating[n] ? acc[P] : acc[P] - u[n] * qd;  // v_L × s_L = v_V × s_L
     if (one_node_links || n == last[L]) {
@@ -1547,10 +1552,8 @@ template <class S, bool Articulated>
       psi[n] = column_motion_cross<G>(kn, s[n], acc[V] + da[V]) - motion_cross(u[n], vel[V]);
     } else if (translating[n]) {
       psi[n] = zero;
-    } else if constexpr (decltype(kn)::value >= 0) {
-      psi[n] = {G::zero_ang(), axis_cross(kn, s[n].a[kn], plus(acc[V].l, da[V].l))};
     } else {
-      psi[n] = {G::zero_ang(), cross(s[n].a, plus(acc[V].l, da[V].l))};
+      psi[n] = column_angular_cross<G>(kn, s[n], plus(acc[V].l, da[V].l));
     }
     if constexpr (stacked) {
       const auto pn = numbers(psi[n]);

@@ -218,13 +218,13 @@ constexpr int tree_solve_row(int cols) { return (cols + 3) / 4 * 4; }
 
 #ifdef FLANGE_TREE_SOLVE_AVX2
 /// acc[0], acc[1] −= the run's rows (x, x + ldx, …; V registers of four
-/// columns each) times m[0], m[ms], m[2·ms], …, the two sums in turn.
+/// columns each) times m[0], m[1], m[2], …, the two sums in turn.
 template <int V>
-[[gnu::target("avx2,fma"), gnu::always_inline]] inline void tree_solve_run(__m256d (&acc)[2][V], const double* m, int ms,
+[[gnu::target("avx2,fma"), gnu::always_inline]] inline void tree_solve_run(__m256d (&acc)[2][V], const double* m,
                                                                           const double* x, int ldx, int n) {
   int i = 0;
-  for (; i + 1 < n; i += 2, m += 2 * ms, x += 2 * ldx) {
-    const __m256d b0 = _mm256_set1_pd(m[0]), b1 = _mm256_set1_pd(m[ms]);
+  for (; i + 1 < n; i += 2, m += 2, x += 2 * ldx) {
+    const __m256d b0 = _mm256_set1_pd(m[0]), b1 = _mm256_set1_pd(m[1]);
     for (int v = 0; v < V; ++v) {
       acc[0][v] = _mm256_fnmadd_pd(b0, _mm256_loadu_pd(x + 4 * v), acc[0][v]);
       acc[1][v] = _mm256_fnmadd_pd(b1, _mm256_loadu_pd(x + ldx + 4 * v), acc[1][v]);
@@ -267,7 +267,7 @@ template <class Tree, int V, int ldx, bool FromLeaves>
   double* xk = X + (k - 1) * ldx + c0;
   tree_solve_start<V>(acc, xk);
   for (auto [r, last] = Tree::template runs_of<FromLeaves>(k); r != last; ++r)
-    tree_solve_run<V>(acc, run_factors(C, ldc, k, *r), 1, X + (r->lo - 1) * ldx + c0, ldx, r->hi - r->lo);
+    tree_solve_run<V>(acc, run_factors(C, ldc, k, *r), X + (r->lo - 1) * ldx + c0, ldx, r->hi - r->lo);
   tree_solve_finish<V, FromLeaves>(acc, inv[k], xk);
 }
 
