@@ -71,6 +71,11 @@ TEST_CASE("the analytic Jacobian equals the dual-number Jacobian on random trees
   check.operator()<9, 8, true>();
   check.operator()<17, 12, false>();
   check.operator()<23, 6, false>();
+  // Up to three nodes a typed joint at the root has its column's shape in
+  // the passes (a turn about a coordinate axis, a translation): here a
+  // Revolute about z and one about x, connected the other way round.
+  check.operator()<28, 3, false>();
+  check.operator()<1, 2, false>();
 }
 
 TEST_CASE("force elements: the analytic Jacobian equals the dual-number Jacobian") {

@@ -68,8 +68,10 @@
 // quaternion's four coordinates (R is homogeneous in Q).
 //
 // Where link 1 turns on a ball that every link hangs from (a floating base,
-// a free body), its nodes' columns in its own axes are known by shape: a
-// translation (0, l), a turn (c·e_k, 0) about coordinate axis k. Their
+// a free body), or on a tree of up to three nodes hangs from the World by a
+// Revolute or a Prismatic (whose link's axes put its axis on one of theirs),
+// its nodes' columns in its own axes are known by shape: a translation (0, l), a turn (c·e_k, 0) about
+// coordinate axis k. Their
 // products (column_dot and the ones beside it) leave out the zero half, and
 // the passes up the tree take those nodes written out, each node and its
 // shape a constant.
@@ -157,6 +159,17 @@ FLANGE_INLINE double transpose_times(double T, double a) { return T * a; }
 /// A moment's trace (in the plane, its entry about K).
 FLANGE_INLINE double trace_of(const Mat3d& T) { return T(0, 0) + T(1, 1) + T(2, 2); }
 FLANGE_INLINE double trace_of(double T) { return T; }
+/// a += b, in space number by number: Eigen's += on a 3 × 3 matrix is a
+/// call the compiler may leave out of line (and so out of the passes' AVX2
+/// build) where a unit holds much code (the benchmark's chains unit).
+FLANGE_INLINE void add_into(Mat3d& a, const Mat3d& b) {
+  for (int i = 0; i < 9; ++i) a.data()[i] += b.data()[i];
+}
+FLANGE_INLINE void add_into(Vec3d& a, const Vec3d& b) {
+  for (int i = 0; i < 3; ++i) a[i] += b[i];
+}
+FLANGE_INLINE void add_into(Vec2d& a, const Vec2d& b) { a += b; }
+FLANGE_INLINE void add_into(double& a, double b) { a += b; }
 
 /// A spatial vector in the passes' frame (link 1's at q, or the World's
 /// axes at link 1's origin where the loads on links come from dual numbers
@@ -171,8 +184,8 @@ struct spatial {
   FLANGE_INLINE friend spatial operator-(const spatial& x, const spatial& y) { return {minus(x.a, y.a), minus(x.l, y.l)}; }
   FLANGE_INLINE friend spatial operator*(const spatial& x, double c) { return {x.a * c, x.l * c}; }
   FLANGE_INLINE spatial& operator+=(const spatial& y) {
-    a += y.a;
-    l += y.l;
+    add_into(a, y.a);
+    add_into(l, y.l);
     return *this;
   }
   FLANGE_INLINE double dot(const spatial& y) const { return inner(a, y.a) + l.dot(y.l); }
@@ -203,8 +216,8 @@ struct world_inertia {
   }
   FLANGE_INLINE world_inertia& operator+=(const world_inertia& o) {
     m += o.m;
-    h += o.h;
-    I += o.I;
+    add_into(h, o.h);
+    add_into(I, o.I);
     return *this;
   }
 };
@@ -220,8 +233,8 @@ struct velocity_coupling {
   typename G::moment T;
   typename G::lin k;
   FLANGE_INLINE velocity_coupling& operator+=(const velocity_coupling& o) {
-    T += o.T;
-    k += o.k;
+    add_into(T, o.T);
+    add_into(k, o.k);
     return *this;
   }
   /// B·w.
@@ -1055,13 +1068,28 @@ template <class S, bool Articulated>
     r[L] = plus(r[P], rotate(R[P], p[L]));
   }
   // The nodes' columns by shape in the passes' frame (column_dot and the
-  // products beside it), where link 1 turns on a ball (a floating base, a
-  // free body, a Spherical at the root) and every link hangs from it: in
-  // link 1's axes its rates' columns are translations and turns about
-  // coordinate axes through the origin, and its nodes 1 … trunk are every
-  // node's last ancestors. Elsewhere every column is any_column.
+  // products beside it), where every link hangs from link 1: in link 1's
+  // axes its rates' columns are, by type, translations (a Prismatic at the
+  // root, a floating base's) and turns about coordinate axes through the
+  // origin (a Revolute at the root, whose link's axes put its axis on one
+  // of theirs, a ball's rotation rates), and its nodes 1 … trunk are every node's last ancestors.
+  // Without a ball at link 1, only on a tree whose passes are written out
+  // node by node (over_nodes: up to written_out_nodes), where its first
+  // node's products are then its shape's alone (the spatial arm's Jacobian:
+  // 5,109 → 4,436 instructions); on longer chains the trunk written out
+  // apart from the loop over the other nodes ran as fast or slower (a
+  // 32-link chain 40 % slower for 2 % more instructions). Elsewhere every
+  // column is any_column.
   constexpr int trunk = nodes::table.last[1];
-  constexpr bool shaped = !in_plane && link1_axes && ball_links<S>[1] && [] {
+  constexpr bool trunk_shapes = [] {
+    for (int n = 1; n <= trunk; ++n)
+      if (parts.no_ang[n] ||
+          (parts.no_lin[n] && parts.axis[n] >= 0 && translating_nodes<S>[nodes::table.vparent[n]]))
+        return true;
+    return false;
+  }();
+  constexpr bool shaped = !in_plane && link1_axes &&
+                          (ball_links<S>[1] || (trunk_shapes && NN - 1 <= written_out_nodes)) && [] {
     for (int L = 2; L < NL; ++L) {
       int P = S::tree.link_parent[L];
       while (P > 1) P = S::tree.link_parent[P];
@@ -1070,8 +1098,8 @@ template <class S, bool Articulated>
     return true;
   }();
   // A turn is shaped only where its velocity parent moves by translation
-  // alone (a ball's, at the root or on a floating base's translations): its
-  // u and ψ then have no angular part, which the passes below also use.
+  // alone (the World, or a floating base's translations): its u and ψ then
+  // have no angular part, which the passes below also use.
   static constexpr auto shape = [] {
     std::array<int, NN> k{};
     for (int n = 0; n < NN; ++n) k[n] = any_column;
@@ -1124,7 +1152,13 @@ template <class S, bool Articulated>
   };
   auto children_first = [&](auto&& step) FLANGE_INLINE_LAMBDA {
     if constexpr (shaped) {
-      for (int n = NN - 1; n > trunk; --n) step(n, std::integral_constant<int, any_column>{});
+      // The nodes below the trunk as over_nodes takes them.
+      if constexpr (NN - 1 <= written_out_nodes)
+        static_for<NN - 1 - trunk>([&](auto k) FLANGE_INLINE_LAMBDA {
+          step(NN - 1 - int(k), std::integral_constant<int, any_column>{});
+        });
+      else
+        for (int n = NN - 1; n > trunk; --n) step(n, std::integral_constant<int, any_column>{});
       static_for<trunk>([&](auto t) FLANGE_INLINE_LAMBDA {
         constexpr int n = trunk - decltype(t)::value;
         step(std::integral_constant<int, n>{}, std::integral_constant<int, shape[n]>{});
