@@ -93,10 +93,12 @@ TEST_CASE("force elements: the analytic Jacobian equals the dual-number Jacobian
   check.operator()<31, 6, false>();
   const auto arm = models::robot_arm({}, Vec3d(0.1, -0.2, 0.3));
   agree(arm, rng);
-  // jacobian() itself takes dual numbers for a scene of one rate (they are
-  // cheaper there), the analytic path from two rates on.
+  // jacobian() itself takes dual numbers for a scene of one rate with a
+  // force element on its link or in the plane (they are cheaper there), the
+  // analytic path for one rate in space without loads and from two rates on.
   STATIC_REQUIRE(!detail::jacobian_takes_analytic<std::remove_cvref_t<decltype(arm)>>());
-  STATIC_REQUIRE(!detail::jacobian_takes_analytic<decltype(models::chain<1, models::runtime_axes>({}))>());
+  STATIC_REQUIRE(!detail::jacobian_takes_analytic<decltype(models::chain<1, models::planar_axes>({}))>());
+  STATIC_REQUIRE(detail::jacobian_takes_analytic<decltype(models::chain<1, models::runtime_axes>({}))>());
   STATIC_REQUIRE(detail::jacobian_takes_analytic<decltype(models::chain<2, models::runtime_axes>({}))>());
   agree(models::robot_arm({}, [](auto t) { return Vec3<decltype(t)>(0.0 * t, 0.0 * t, 0.5 * t); }), rng);
   // In space, force elements that read their links' motions and the time

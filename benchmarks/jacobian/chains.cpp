@@ -13,7 +13,7 @@ void chain(const char* name) {
 #ifdef FLANGE_SCALE_FULL
   constexpr bool with_dual = N <= 16;  // the dual-number Jacobians cost the unit minutes to compile
 #else
-  constexpr bool with_dual = N == 1;  // where jacobian() takes them: one rate
+  constexpr bool with_dual = N == 1;  // one rate: dual numbers' time beside the passes'
 #endif
   jacobian_bench::measure<with_dual>(name, N, s, x);
 }

@@ -195,19 +195,24 @@ inline constexpr std::array<int, 2 * S::n_v> derivative_column_place = [] {
 }();
 
 /// Whether jacobian() takes the analytic derivatives: wherever they apply,
-/// but for a scene of one rate, or of one link with force elements, where
-/// the passes' fixed cost (and the loads' dual numbers) exceed dual numbers
-/// through the derivative: the one-link chain of a run-time axis 89
-/// against 83 ns, the paper's arm 60 against 27 ns, a ball on the ground 1.9
-/// against 1.7 µs; a free body without loads (six rates) is the other way
-/// round, 0.33 against 1.20 µs (build/benchmarks/jacobian's analytic_ns and
-/// dual_ns, medians of nine runs; docs/performance.md, "The Jacobian").
+/// but where the passes' fixed cost (and the loads' dual numbers) exceed
+/// dual numbers through the derivative: a scene of one rate in the plane
+/// (one revolute about a typed axis: 25 against 18 ns) or with force
+/// elements on its link (the paper's arm, 60 against 27 ns), or of one link
+/// with force elements (a ball on the ground, 1.9 against 1.7 µs). A scene
+/// of one rate in space takes them (the one-link chain of a run-time axis,
+/// its column's shape known to the passes: 46 against 92 ns), and so does
+/// a free body without loads (six rates), 0.33 against 1.20 µs (probes and
+/// build/benchmarks/jacobian's analytic_ns and dual_ns; docs/performance.md,
+/// "The Jacobian").
 template <class S>
 constexpr bool jacobian_takes_analytic() {
   if constexpr (!analytic_derivatives<S>()) {
     return false;
+  } else if constexpr (S::n_v == 1) {
+    return !has_link_loads<S>() && planar_axis<S>() < 0;
   } else {
-    return S::n_v > 1 && (S::tree.n_links > 2 || !has_link_loads<S>());
+    return S::tree.n_links > 2 || !has_link_loads<S>();
   }
 }
 
