@@ -52,12 +52,14 @@ TEST_CASE("the analytic Jacobian equals the dual-number Jacobian on chains") {
   agree(models::chain<2, models::runtime_axes>(p2), rng);
   auto p1 = models::random_chain_params<1>(rng);
   agree(models::chain<1, models::runtime_axes>(p1), rng);
-  // Up to three nodes every pass is written out node by node in the plane
+  // Up to four nodes every pass is written out node by node in the plane
   // (over_nodes), only the backward ones in space (the chains above).
   auto q2 = models::random_chain_params<2>(rng);
   agree(models::chain<2, models::planar_axes>(q2), rng);
   auto q3 = models::random_chain_params<3>(rng);
   agree(models::chain<3, models::planar_axes>(q3), rng);
+  auto q4 = models::random_chain_params<4>(rng);
+  agree(models::chain<4, models::planar_axes>(q4), rng);
 }
 
 TEST_CASE("the analytic Jacobian equals the dual-number Jacobian on random trees") {
@@ -71,7 +73,7 @@ TEST_CASE("the analytic Jacobian equals the dual-number Jacobian on random trees
   check.operator()<9, 8, true>();
   check.operator()<17, 12, false>();
   check.operator()<23, 6, false>();
-  // Up to three nodes a typed joint at the root has its column's shape in
+  // Up to four nodes a typed joint at the root has its column's shape in
   // the passes (a turn about a coordinate axis, a translation): here a
   // Revolute about z and one about x, connected the other way round.
   check.operator()<28, 3, false>();

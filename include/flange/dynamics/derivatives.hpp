@@ -68,13 +68,12 @@
 // quaternion's four coordinates (R is homogeneous in Q).
 //
 // Where link 1 turns on a ball that every link hangs from (a floating base,
-// a free body), or on a tree of up to three nodes hangs from the World by a
+// a free body), or on a tree of up to four nodes hangs from the World by a
 // Revolute or a Prismatic (whose link's axes put its axis on one of theirs),
-// its nodes' columns in its own axes are known by shape: a translation (0, l), a turn (c·e_k, 0) about
-// coordinate axis k. Their
-// products (column_dot and the ones beside it) leave out the zero half, and
-// the passes up the tree take those nodes written out, each node and its
-// shape a constant.
+// its nodes' columns in its own axes are known by shape: a translation
+// (0, l), a turn (c·e_k, 0) about coordinate axis k. Their products
+// (column_dot and the ones beside it) leave out the zero half, and the
+// passes take those nodes written out, each node and its shape a constant.
 //
 // A link's nodes but its last carry no body, and each one's only child is
 // the next node of its link: they share its subtree, and so its composite
@@ -162,9 +161,7 @@ FLANGE_INLINE double trace_of(double T) { return T; }
 /// a += b, in space number by number: Eigen's += on a 3 × 3 matrix is a
 /// call the compiler may leave out of line (and so out of the passes' AVX2
 /// build) where a unit holds much code (the benchmark's chains unit).
-FLANGE_INLINE void add_into(Mat3d& a, const Mat3d& b) {
-  for (int i = 0; i < 9; ++i) a.data()[i] += b.data()[i];
-}
+FLANGE_INLINE void add_into(Mat3d& a, const Mat3d& b) { small::add_to(a, b); }
 FLANGE_INLINE void add_into(Vec3d& a, const Vec3d& b) {
   for (int i = 0; i < 3; ++i) a[i] += b[i];
 }
@@ -803,7 +800,7 @@ inline constexpr auto derivative_row_rate = [] {
 /// forward ones in the plane alone: in space, written out, they ran slower
 /// for fewer instructions. On larger trees it costs more compile time than
 /// it saves (docs/performance.md, "The Jacobian", has the figures).
-inline constexpr int written_out_nodes = 3;
+inline constexpr int written_out_nodes = 4;
 
 /// step(n) for the nodes n = 1 … NN − 1, parents first, or with
 /// ChildrenFirst the other way: written out (each n a constant) where
@@ -1072,11 +1069,12 @@ template <class S, bool Articulated>
   // axes its rates' columns are, by type, translations (a Prismatic at the
   // root, a floating base's) and turns about coordinate axes through the
   // origin (a Revolute at the root, whose link's axes put its axis on one
-  // of theirs, a ball's rotation rates), and its nodes 1 … trunk are every node's last ancestors.
-  // Without a ball at link 1, only on a tree whose passes are written out
-  // node by node (over_nodes: up to written_out_nodes), where its first
-  // node's products are then its shape's alone (the spatial arm's Jacobian:
-  // 5,109 → 4,436 instructions); on longer chains the trunk written out
+  // of theirs, a ball's rotation rates), and its nodes 1 … trunk are every
+  // node's last ancestors. Without a ball at link 1, only on a tree whose
+  // passes are written out node by node (over_nodes: up to
+  // written_out_nodes), where its first node's products are then its
+  // shape's alone (the spatial arm's Jacobian: 5,239 → 4,513 instructions,
+  // tools/jacobian_counts.sh); on longer chains the trunk written out
   // apart from the loop over the other nodes ran as fast or slower (a
   // 32-link chain 40 % slower for 2 % more instructions). Elsewhere every
   // column is any_column.
