@@ -162,8 +162,8 @@ FLANGE_INLINE double trace_of(double T) { return T; }
 /// call the compiler may leave out of line (and so out of the passes' AVX2
 /// build) where a unit holds much code (the benchmark's chains unit).
 FLANGE_INLINE void add_into(Mat3d& a, const Mat3d& b) { small::add_to(a, b); }
-FLANGE_INLINE void add_into(Vec3d& a, const Vec3d& b) {
-  for (int i = 0; i < 3; ++i) a[i] += b[i];
+FLANGE_INLINE void add_into(Vec3d& a, const Vec3d& b) {  // (a = plus(a, b): 104 more
+  for (int i = 0; i < 3; ++i) a[i] += b[i];                // instructions a spatial arm's Jacobian)
 }
 FLANGE_INLINE void add_into(Vec2d& a, const Vec2d& b) { a += b; }
 FLANGE_INLINE void add_into(double& a, double b) { a += b; }
@@ -1079,11 +1079,23 @@ template <class S, bool Articulated>
   // 32-link chain 40 % slower for 2 % more instructions). Elsewhere every
   // column is any_column.
   constexpr int trunk = nodes::table.last[1];
+  // A trunk node's shape by type. A turn has one only where its velocity
+  // parent moves by translation alone (the World, or a floating base's
+  // translations): its u and ψ then have no angular part, which the passes
+  // below also use.
+  static constexpr auto shape_by_type = [] {
+    std::array<int, NN> k{};
+    for (int n = 0; n < NN; ++n)
+      k[n] = n == 0 || n > trunk ? any_column
+             : parts.no_ang[n]   ? translation_column
+             : parts.no_lin[n] && parts.axis[n] >= 0 && translating_nodes<S>[nodes::table.vparent[n]]
+                 ? parts.axis[n]
+                 : any_column;
+    return k;
+  }();
   constexpr bool trunk_shapes = [] {
     for (int n = 1; n <= trunk; ++n)
-      if (parts.no_ang[n] ||
-          (parts.no_lin[n] && parts.axis[n] >= 0 && translating_nodes<S>[nodes::table.vparent[n]]))
-        return true;
+      if (shape_by_type[n] != any_column) return true;
     return false;
   }();
   constexpr bool shaped = !in_plane && link1_axes &&
@@ -1095,18 +1107,10 @@ template <class S, bool Articulated>
     }
     return true;
   }();
-  // A turn is shaped only where its velocity parent moves by translation
-  // alone (the World, or a floating base's translations): its u and ψ then
-  // have no angular part, which the passes below also use.
+  // The shapes the passes take: the trunk's where columns are shaped.
   static constexpr auto shape = [] {
     std::array<int, NN> k{};
-    for (int n = 0; n < NN; ++n) k[n] = any_column;
-    if (shaped)
-      for (int n = 1; n <= trunk; ++n)
-        k[n] = parts.no_ang[n] ? translation_column
-               : parts.no_lin[n] && parts.axis[n] >= 0 && translating_nodes<S>[nodes::table.vparent[n]]
-                   ? parts.axis[n]
-                   : any_column;
+    for (int n = 0; n < NN; ++n) k[n] = shaped ? shape_by_type[n] : any_column;
     return k;
   }();
   // f(j, k) for node `from` and each of its ancestors, nearest first, k the

@@ -107,16 +107,12 @@ struct chain_factor {
       U[k][c] = u[c];
       Ud[k][c] = u[c] * e;
     }
-    // I −= (u·e)·uᵀ; in space written out: as Eigen's outer product, a
-    // call the compiler may leave out of line (and so out of the passes'
-    // AVX2 build) where a unit holds much code, which ran a 32-link chain's
-    // Jacobian 40 % slower.
-    if constexpr (C == 6) {
-      for (int j = 0; j < C; ++j)
-        for (int i = 0; i < C; ++i) I(i, j) -= Ud[k][i] * u[j];
-    } else {
-      I.noalias() -= (u * e) * u.transpose();
-    }
+    // I −= (u·e)·uᵀ, written out: as Eigen's outer product, a call the
+    // compiler may leave out of line (and so out of the passes' AVX2 build)
+    // where a unit holds much code, which ran a 32-link chain's Jacobian 40 %
+    // slower (the planar 16-link chain's runs as fast either way).
+    for (int j = 0; j < C; ++j)
+      for (int i = 0; i < C; ++i) I(i, j) -= Ud[k][i] * u[j];
   }
   FLANGE_INLINE void finish() {
     for (int k = 0; k < N; ++k) {
