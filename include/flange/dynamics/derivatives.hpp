@@ -90,9 +90,13 @@
 // of one rate whose column is fixed in their link (Revolute, Prismatic,
 // either way round, axes typed or given at run time, any drive), of balls
 // and of joints of rates in series, both connected frame_a toward the World,
-// with any force elements. simulate/jacobian.hpp takes dual numbers for
+// with any force elements. The tree of a scene with loops (analytic_tree<S>)
+// takes them too, for simulate/jacobian.hpp's implicit differentiation of
+// the constrained accelerations: given the loops' constraint forces Gᵀ·λ as
+// generalized forces held fixed, their v̇ is the constrained one and their
+// columns M⁻¹·(∂Q − ∂ID) at it. simulate/jacobian.hpp takes dual numbers for
 // every other scene (a ball or a Universal or Cylindrical connected the other
-// way round, loops).
+// way round).
 #pragma once
 #include <array>
 #include <cmath>
@@ -533,10 +537,12 @@ inline constexpr auto ball_links = [] {
   return r;
 }();
 
-/// Whether the scene's ∂v̇/∂x comes from analytic_derivatives (above).
+/// Whether the passes below take the scene's tree (its loops' cut joints
+/// aside): every joint one they are written for, connected frame_a toward
+/// the World.
 template <class S>
-constexpr bool analytic_derivatives() {
-  if constexpr (!walkable<S> || S::tree.n_cuts > 0 || S::tree.n_links < 2) {
+constexpr bool analytic_tree() {
+  if constexpr (!walkable<S> || S::tree.n_links < 2) {
     return false;
   } else {
     return []<int... L>(std::integer_sequence<int, L...>) {
@@ -545,6 +551,13 @@ constexpr bool analytic_derivatives() {
               ...);
     }(std::make_integer_sequence<int, S::tree.n_links - 1>{});
   }
+}
+
+/// Whether the scene's ∂v̇/∂x comes from analytic_derivatives (above): a
+/// tree they take, with no loop.
+template <class S>
+constexpr bool analytic_derivatives() {
+  return S::tree.n_cuts == 0 && analytic_tree<S>();
 }
 
 /// The passes' nodes: one per rate, link by link (parents first) and each
@@ -968,6 +981,10 @@ using derivative_rows = Eigen::Matrix<double, S::n_v, tree_solve_row(2 * S::n_v 
 /// one per rate (a ball's rotation rates: its link turned about its own axes,
 /// Q moving by ½·Q ⊗ (δ, 0); simulate/jacobian.hpp turns these into the
 /// quaternion's four), then v, then t; row r is rate derivative_row_rate<S>[r].
+/// With force given, those generalized forces (by rate) join Q, held fixed
+/// in x: a loop's constraint forces Gᵀ·λ at the loop solve's λ, which make
+/// v̇ the constrained accelerations and out M⁻¹·(∂Q − ∂ID) at them
+/// (simulate/jacobian.hpp adds the derivative of Gᵀ itself).
 /// Returns the pivot of M that failed (index ≥ 0: out and vdot are not
 /// written; index is its rate), as the mass-matrix solve reports it.
 /// Articulated: M⁻¹ by its articulated-body factor (math/chain_solve.hpp, a
@@ -978,8 +995,8 @@ template <class S, bool Articulated>
 [[gnu::always_inline]] inline pivot_report<double> acceleration_derivatives_passes(const S& scene, double t,
                                                                                   const double* q, const double* v,
                                                                                   derivative_rows<S>& out,
-                                                                                  double* vdot) {
-  static_assert(analytic_derivatives<S>());
+                                                                                  double* vdot, const double* force = nullptr) {
+  static_assert(analytic_tree<S>());
   constexpr int NL = S::tree.n_links, N = S::n_v, NN = N + 1;
   using nodes = derivative_nodes<S>;
   constexpr auto link_parent = [] {
@@ -1572,6 +1589,8 @@ template <class S, bool Articulated>
   using tree = node_runs<S>;
   // v̇ = M⁻¹·(Q − τ⁰); then each node's acceleration changes by δa_n = δa_P +
   // s_n·v̇_n, and ψ_n = s_n × a_V − u_n × v_V follows (V: vparent).
+  if (force)
+    for (int n = 1; n < NN; ++n) b[n - 1] += force[rate[n]];
   if constexpr (Articulated) {
     chain_solve_column(chain_M, b.data());
   } else {
@@ -1698,8 +1717,9 @@ template <class S, bool Articulated>
 /// gives).
 template <class S, bool Articulated>
 pivot_report<double> acceleration_derivatives_portable(const S& scene, double t, const double* q, const double* v,
-                                                       derivative_rows<S>& out, double* vdot) {
-  return acceleration_derivatives_passes<S, Articulated>(scene, t, q, v, out, vdot);
+                                                       derivative_rows<S>& out, double* vdot,
+                                                       const double* force = nullptr) {
+  return acceleration_derivatives_passes<S, Articulated>(scene, t, q, v, out, vdot, force);
 }
 
 #if defined(FLANGE_X86_DISPATCH) && !defined(FLANGE_NO_AVX2)
@@ -1714,8 +1734,8 @@ pivot_report<double> acceleration_derivatives_portable(const S& scene, double t,
 template <class S, bool Articulated>
 [[gnu::target("avx2")]] pivot_report<double> acceleration_derivatives_avx2(const S& scene, double t, const double* q,
                                                                            const double* v, derivative_rows<S>& out,
-                                                                           double* vdot) {
-  return acceleration_derivatives_passes<S, Articulated>(scene, t, q, v, out, vdot);
+                                                                           double* vdot, const double* force = nullptr) {
+  return acceleration_derivatives_passes<S, Articulated>(scene, t, q, v, out, vdot, force);
 }
 #endif
 
@@ -1725,11 +1745,12 @@ template <class S, bool Articulated>
 /// either way.
 template <class S, bool Articulated = articulated_solve<S>()>
 pivot_report<double> acceleration_derivatives(const S& scene, double t, const double* q, const double* v,
-                                              derivative_rows<S>& out, double* vdot = nullptr) {
+                                              derivative_rows<S>& out, double* vdot = nullptr,
+                                              const double* force = nullptr) {
 #if defined(FLANGE_X86_DISPATCH) && !defined(FLANGE_NO_AVX2)
-  if (cpu_has_avx2) return acceleration_derivatives_avx2<S, Articulated>(scene, t, q, v, out, vdot);
+  if (cpu_has_avx2) return acceleration_derivatives_avx2<S, Articulated>(scene, t, q, v, out, vdot, force);
 #endif
-  return acceleration_derivatives_portable<S, Articulated>(scene, t, q, v, out, vdot);
+  return acceleration_derivatives_portable<S, Articulated>(scene, t, q, v, out, vdot, force);
 }
 
 }  // namespace flange::detail

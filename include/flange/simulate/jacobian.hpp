@@ -4,7 +4,8 @@
 // a Cylindrical, a Planar), from the analytic derivatives of inverse
 // dynamics (dynamics/derivatives.hpp); for a scene with loops whose loop
 // solve is exact at x, by implicit differentiation of its constrained system
-// (jacobian_loops, below); for every other scene by forward-mode dual
+// (jacobian_loops, below: the same passes on its tree where they take it,
+// the loops' kinematics in dual numbers); for every other scene by forward-mode dual
 // numbers through the scalar-templated dynamics (jacobian_dual, which is
 // also there for any scene).
 //
@@ -307,6 +308,79 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
   return made_by<S>([&](jacobian_matrix<S>& J) { jacobian_analytic(scene, t, x, J, dfdt); });
 }
 
+/// The blocks of [M −Gᵀ; G 0] that the implicit differentiation below
+/// solves with: M = L·D·Lᵀ as the loop solve factored it; G's rows; from
+/// them B = L⁻¹·Gᵀ, the Schur complement S = G·M⁻¹·Gᵀ = Bᵀ·D⁻¹·B, factored
+/// the same way, and Z = M⁻¹·Gᵀ. The loop solve kept every row undamped,
+/// so S is as well conditioned as its rows (each at least 100 times the
+/// damping away from depending on the rows before it).
+template <class S>
+struct loop_blocks {
+  static constexpr int nv = S::n_v, m = n_constraints<S>();
+  const factored_mass<S, double>& mass;
+  std::array<std::array<double, nv>, m> G, Z;  // row c of G; column c of M⁻¹·Gᵀ
+  Eigen::Matrix<double, m, m> Sc;
+  ldlt_pivots<m, double> fS;
+
+  explicit loop_blocks(const factored_mass<S, double>& factored) : mass(factored) {}
+  /// From G's entries g(c, i); false where S fails its pivot test (which
+  /// an exact loop solve rules out).
+  template <class Entry>
+  bool factor(Entry&& g) {
+    std::array<double, m> yard;
+    for (int c = 0; c < m; ++c) {
+      for (int i = 0; i < nv; ++i) G[c][i] = g(c, i);
+      ldlt_forward<nv>(mass.M, G[c].data(), Z[c].data(), mass_factor<S>{});  // B's column c, for now
+    }
+    for (int c = 0; c < m; ++c)
+      for (int e = 0; e <= c; ++e) {
+        double x = 0;
+        for (int i = 0; i < nv; ++i) x += Z[c][i] * Z[e][i] * mass.f.inv_d[i];
+        Sc(c, e) = Sc(e, c) = x;
+      }
+    for (int c = 0; c < m; ++c) yard[c] = Sc(c, c);
+    if (ldlt_factor<m>(Sc, fS, yard.data()).index >= 0) return false;
+    for (int c = 0; c < m; ++c) {
+      for (int i = 0; i < nv; ++i) Z[c][i] *= mass.f.inv_d[i];
+      ldlt_backward<nv>(mass.M, Z[c].data(), Z[c].data(), mass_factor<S>{});
+    }
+    return true;
+  }
+  /// y = M⁻¹·y.
+  void solve_mass(double* y) const {
+    ldlt_forward<nv>(mass.M, y, y, mass_factor<S>{});
+    for (int i = 0; i < nv; ++i) y[i] *= mass.f.inv_d[i];
+    ldlt_backward<nv>(mass.M, y, y, mass_factor<S>{});
+  }
+  /// One column of [M −Gᵀ; G 0]·[x; μ] = [−∂F; −∂C] from x0 = M⁻¹·(−∂F)
+  /// (in x, which it becomes) and ∂C: S·μ = −∂C − G·x0, x = x0 + Z·μ.
+  void constrain(double* x, const double* dC) const {
+    std::array<double, m> r, mu;
+    for (int e = 0; e < m; ++e) {
+      double y = -dC[e];
+      for (int i = 0; i < nv; ++i) y -= G[e][i] * x[i];
+      r[e] = y;
+    }
+    ldlt_solve<m>(Sc, fS, r.data(), mu.data());
+    for (int i = 0; i < nv; ++i)
+      for (int e = 0; e < m; ++e) x[i] += Z[e][i] * mu[e];
+  }
+};
+
+/// Whether the implicit differentiation of a scene with loops takes the
+/// analytic passes (dynamics/derivatives.hpp) for its tree: a tree they
+/// take whose every coordinate is its rate's (q̇ = v: no ball).
+template <class S>
+constexpr bool loops_take_passes() {
+  if constexpr (!analytic_tree<S>() || S::n_q != S::n_v) {
+    return false;
+  } else {
+    for (int k = 0; k < S::n_v; ++k)
+      if (rate_coordinate<S>[k] != k) return false;
+    return true;
+  }
+}
+
 /// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given, for a scene with loops,
 /// by implicit differentiation of its constrained accelerations: v̇ and the
 /// constraint forces λ solve
@@ -314,16 +388,20 @@ jacobian_matrix<S> jacobian_analytic(const S& scene, double t, const State& x,
 ///   F = M·v̇ + b − τ − Gᵀ·λ = 0,   C = G·v̇ + Ġ·v = 0,
 ///
 /// so that [M −Gᵀ; G 0]·[∂v̇; ∂λ] = −[∂F; ∂C], where ∂F and ∂C are the
-/// derivatives at the solution's v̇ and λ held fixed: inverse dynamics, the
-/// joints' forces and the loops' kinematics in dual numbers (no mass matrix,
-/// no factorization, no loop solve in them), then one double solve with
-/// n_state right-hand sides (n_state + 1 WithTime), by the blocks of the
-/// matrix (the LDLᵀ factors of M and of G·M⁻¹·Gᵀ; false where either fails
-/// its pivot test, which an exact loop solve rules out). Only where the
-/// loop solve was the exact one (every constraint row kept, no division
-/// damped: dynamics/loop_solve.hpp); false otherwise, and nothing written
-/// (a redundant constraint or a singular position, which jacobian() then
-/// differentiates by dual numbers, the damping and the rows left out
+/// derivatives at the solution's v̇ and λ held fixed, then one double solve
+/// with n_state right-hand sides (n_state + 1 WithTime) by the blocks of
+/// the matrix (loop_blocks). ∂C comes from the loops' kinematics in dual
+/// numbers. M⁻¹·∂F comes, where the analytic passes take the tree
+/// (loops_take_passes), from them, given the constraint forces Gᵀ·λ as
+/// forces held fixed (so that their v̇ is the constrained one), plus
+/// M⁻¹·∂(Gᵀ)·λ from the same dual numbers as ∂C; else from inverse
+/// dynamics and the joints' forces in dual numbers (no mass matrix, no
+/// factorization, no loop solve in them). Only where the loop solve was the
+/// exact one (every constraint row kept, no division damped:
+/// dynamics/loop_solve.hpp), and where S and the passes' M pass their pivot
+/// tests, which an exact loop solve rules out; false otherwise, and nothing
+/// written (a redundant constraint or a singular position, which jacobian()
+/// then differentiates by dual numbers, the damping and the rows left out
 /// included). WithTime: ∂f/∂t too, into *dfdt when it is given.
 template <bool WithTime, class S, class State>
 bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
@@ -332,6 +410,7 @@ bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matr
   S::require_state_size(x);
   using A = algebra_t<S>;
   constexpr int nq = S::n_q, nv = S::n_v, m = n_constraints<S>(), n = S::n_state;
+  constexpr bool passes = loops_take_passes<S>();
   std::array<double, n> copy;
   const double* const xs = state_numbers<S>(x, copy);
   const double* q = xs;
@@ -339,96 +418,110 @@ bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matr
   std::array<double, nv> a;
   std::array<double, m> lambda;
   bool exact = false;
-  // [M −Gᵀ; G 0] by its blocks: M = L·D·Lᵀ as the loop solve factored it;
-  // from the first pass's values of G, B = L⁻¹·Gᵀ and the Schur complement
-  // S = G·M⁻¹·Gᵀ = Bᵀ·D⁻¹·B, factored the same way. The loop solve kept
-  // every row undamped, so S is as well conditioned as its rows (each at
-  // least 100 times the damping away from depending on the rows before it).
   factored_mass<S, double> mass;
   accelerations_and_constraint_forces(scene, t, q, v, a.data(), lambda.data(), &exact, &mass);
   if (!exact) return false;
-  const auto& M = mass.M;
-  const auto& fM = mass.f;
-  std::array<std::array<double, nv>, m> B;  // B[c]: L⁻¹ times row c of G
-  Eigen::Matrix<double, m, m> Sc;
-  ldlt_pivots<m, double> fS;
+  loop_blocks<S> K(mass);
   bool factored = false;
-  using D = jacobian_dual_t<n, WithTime>;
-  std::array<D, nv> ad;
-  for (int i = 0; i < nv; ++i) ad[i] = D(a[i]);
-  dual_passes<n, WithTime>(x, t, [&](const auto& xd, const D& td, int first) {
+  // The time's lane: the loops' kinematics do not read it, so the passes'
+  // ∂/∂t needs none.
+  constexpr bool time_lane = WithTime && !passes;
+  using D = jacobian_dual_t<n, time_lane>;
+  alignas(32) std::conditional_t<passes, derivative_rows<S>, std::array<int, 0>> d;
+  dual_passes<n, time_lane>(x, t, [&](const auto& xd, const D& td, int first) {
     if (first > 0 && !factored) return;
+    (void)td;  // read by the dual-number route alone
     const D* qd = xd.data();
     const D* vd = xd.data() + nq;
-    const auto xv = state_view(scene, qd, vd);
     const auto motions = algebra_motions<A>(scene, qd);
     decltype(auto) pose = pose_motions<A>(scene, qd, motions);
-    link_loads<S, D> n_ext, f_ext;
-    gather_external<A>(scene, td, xv, motions, pose, n_ext, f_ext);
-    std::array<D, nv> F;
-    inverse_dynamics<A>(scene, motions, vd, ad.data(), n_ext, f_ext, F.data());
-    if constexpr (has_joint_forces<S>()) {
-      std::array<D, nv> tau;
-      joint_forces(scene, td, xv, tau.data());
-      for (int i = 0; i < nv; ++i) F[i] -= tau[i];
-    }
     const auto k = loop_kinematics_at<S>(scene, pose, vd);
     if (first == 0) {
-      std::array<double, m> yard;
-      for (int c = 0; c < m; ++c) {
-        std::array<double, nv> g;
-        for (int i = 0; i < nv; ++i) g[i] = k.G(c, i).v;
-        ldlt_forward<nv>(M, g.data(), B[c].data(), mass_factor<S>{});
-      }
-      for (int c = 0; c < m; ++c)
-        for (int e = 0; e <= c; ++e) {
-          double x = 0;
-          for (int i = 0; i < nv; ++i) x += B[c][i] * B[e][i] * fM.inv_d[i];
-          Sc(c, e) = Sc(e, c) = x;
-        }
-      for (int c = 0; c < m; ++c) yard[c] = Sc(c, c);
-      factored = ldlt_factor<m>(Sc, fS, yard.data()).index < 0;
+      factored = K.factor([&](int c, int i) { return k.G(c, i).v; });
       if (!factored) return;
+      if constexpr (passes) {
+        std::array<double, nv> constraint_forces;  // Gᵀ·λ
+        for (int i = 0; i < nv; ++i) {
+          double f = 0;
+          for (int c = 0; c < m; ++c) f += K.G[c][i] * lambda[c];
+          constraint_forces[i] = f;
+        }
+        factored = acceleration_derivatives(scene, t, q, v, d, nullptr, constraint_forces.data()).index < 0;
+        if (!factored) return;
+      }
     }
-    std::array<D, m> C;
+    std::array<D, m> C;  // G·v̇ + Ġ·v at the solution's v̇
     for (int c = 0; c < m; ++c) {
       C[c] = k.bias[c];
-      for (int i = 0; i < nv; ++i) {
-        F[i] -= k.G(c, i) * lambda[c];
-        C[c] += k.G(c, i) * a[i];
-      }
+      for (int i = 0; i < nv; ++i) C[c] += k.G(c, i) * a[i];
     }
-    // q̇'s rows: the joints' rates, differentiated as they are written.
-    std::array<D, nq> qdot;
-    joint_rates(scene, qd, vd, qdot.data());
-    // Lane l's column: M·x − Gᵀ·μ = −∂F, G·x = −∂C by the blocks, x =
-    // M⁻¹·(−∂F + Gᵀ·μ) where S·μ = −∂C + G·M⁻¹·∂F.
-    lane_columns<n, WithTime>(first, [&](int l, int c) {
-      std::array<double, nv> y, dv;
-      std::array<double, m> r, mu;
-      for (int i = 0; i < nv; ++i) y[i] = -F[i].d[l];
-      ldlt_forward<nv>(M, y.data(), y.data(), mass_factor<S>{});  // y = L⁻¹·(−∂F)
-      for (int e = 0; e < m; ++e) {
-        double x = -C[e].d[l];
-        for (int i = 0; i < nv; ++i) x -= B[e][i] * fM.inv_d[i] * y[i];
-        r[e] = x;
-      }
-      ldlt_solve<m>(Sc, fS, r.data(), mu.data());
-      for (int i = 0; i < nv; ++i) {
-        double x = y[i];
-        for (int e = 0; e < m; ++e) x += B[e][i] * mu[e];
-        dv[i] = x * fM.inv_d[i];
-      }
-      ldlt_backward<nv>(M, dv.data(), dv.data(), mass_factor<S>{});
-      if (c < n) {
-        for (int i = 0; i < nq; ++i) J(i, c) = qdot[i].d[l];
+    if constexpr (passes) {
+      constexpr auto row = derivative_row_rate<S>;
+      lane_columns<n, false>(first, [&](int l, int c) {
+        // x0 = M⁻¹·(−∂F): the passes' M⁻¹·(∂Q − ∂ID) at v̇ (column c's:
+        // a coordinate is its rate's), plus M⁻¹·∂(Gᵀ)·λ.
+        std::array<double, nv> dv;
+        std::array<double, m> dC;
+        for (int i = 0; i < nv; ++i) {
+          double h = 0;
+          for (int e = 0; e < m; ++e) h += k.G(e, i).d[l] * lambda[e];
+          dv[i] = h;
+        }
+        K.solve_mass(dv.data());
+        const int col = c < nq ? c : nv + (c - nq);
+        for (int r = 0; r < nv; ++r) dv[row[r]] += d(r, col);
+        for (int e = 0; e < m; ++e) dC[e] = C[e].d[l];
+        K.constrain(dv.data(), dC.data());
+        for (int i = 0; i < nq; ++i) J(i, c) = c == nq + i ? 1.0 : 0.0;  // q̇ = v
         for (int i = 0; i < nv; ++i) J(nq + i, c) = dv[i];
-      } else if (dfdt) {
-        for (int i = 0; i < nq; ++i) (*dfdt)(i) = qdot[i].d[l];
-        for (int i = 0; i < nv; ++i) (*dfdt)(nq + i) = dv[i];
+      });
+    } else {
+      std::array<D, nv> ad;
+      for (int i = 0; i < nv; ++i) ad[i] = D(a[i]);
+      link_loads<S, D> n_ext, f_ext;
+      const auto xv = state_view(scene, qd, vd);
+      gather_external<A>(scene, td, xv, motions, pose, n_ext, f_ext);
+      std::array<D, nv> F;
+      inverse_dynamics<A>(scene, motions, vd, ad.data(), n_ext, f_ext, F.data());
+      if constexpr (has_joint_forces<S>()) {
+        std::array<D, nv> tau;
+        joint_forces(scene, td, xv, tau.data());
+        for (int i = 0; i < nv; ++i) F[i] -= tau[i];
       }
-    });
+      for (int c = 0; c < m; ++c)
+        for (int i = 0; i < nv; ++i) F[i] -= k.G(c, i) * lambda[c];
+      // q̇'s rows: the joints' rates, differentiated as they are written.
+      std::array<D, nq> qdot;
+      joint_rates(scene, qd, vd, qdot.data());
+      lane_columns<n, WithTime>(first, [&](int l, int c) {
+        std::array<double, nv> dv;
+        std::array<double, m> dC;
+        for (int i = 0; i < nv; ++i) dv[i] = -F[i].d[l];
+        K.solve_mass(dv.data());
+        for (int e = 0; e < m; ++e) dC[e] = C[e].d[l];
+        K.constrain(dv.data(), dC.data());
+        if (c < n) {
+          for (int i = 0; i < nq; ++i) J(i, c) = qdot[i].d[l];
+          for (int i = 0; i < nv; ++i) J(nq + i, c) = dv[i];
+        } else if (dfdt) {
+          for (int i = 0; i < nq; ++i) (*dfdt)(i) = qdot[i].d[l];
+          for (int i = 0; i < nv; ++i) (*dfdt)(nq + i) = dv[i];
+        }
+      });
+    }
   });
+  if constexpr (passes && WithTime) {
+    if (factored && dfdt) {
+      // ∂/∂t: the passes' column (C does not read the time).
+      constexpr auto row = derivative_row_rate<S>;
+      std::array<double, nv> dv;
+      const std::array<double, m> dC{};
+      for (int r = 0; r < nv; ++r) dv[row[r]] = d(r, 2 * nv);
+      K.constrain(dv.data(), dC.data());
+      dfdt->template head<nq>().setZero();
+      for (int i = 0; i < nv; ++i) (*dfdt)(nq + i) = dv[i];
+    }
+  }
   return factored;
 }
 

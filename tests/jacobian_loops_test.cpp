@@ -1,0 +1,111 @@
+// The Jacobian of a scene with loops by implicit differentiation
+// (simulate/jacobian.hpp, jacobian_loops): where the analytic passes take
+// the loop's tree (loops_take_passes), M⁻¹·∂F comes from them and the
+// loops' kinematics alone from dual numbers; else inverse dynamics runs in
+// dual numbers too. Either way it is held to jacobian_dual(), which carries
+// the dual numbers through the mass matrix, its factor and the loop solve:
+// the same derivative by another algorithm, to the solves' round-off (1e-12
+// of the largest entry); and to central differences, to theirs.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <flange/flange.hpp>
+#include <flange/models/linkages.hpp>
+#include <flange/simulate/jacobian.hpp>
+
+#include "loop_links.hpp"
+#include "random_params.hpp"
+#include "tree_laws.hpp"
+
+using namespace flange;
+using test::bar_to;
+
+namespace {
+
+/// A spatial four-bar (as in loop_cut_kinds_test.cpp): the crank turns about
+/// z at the origin (r1, driven by a torque of time), out to A = (0.4, 0, 0);
+/// joint "j" joins it to the coupler, which reaches B = (0.4, 0.8, 0.3);
+/// the rocker turns about y at C = (0.9, 0.8, 0.3) (r2, held by a PD law
+/// toward 0.2 rad that also reads r1) and reaches B, where a Spherical "s"
+/// joins coupler and rocker. A force of the World pushes the coupler's far
+/// end. Of "j" and "s", the one written last is cut.
+template <class First, class Second>
+auto driven_four_bar(const First& first, const Second& second) {
+  auto drive = [](auto t) {
+    using std::sin;
+    return 0.8 * sin(2.0 * t);
+  };
+  auto pd = [](auto t, const auto& x) { return -5.0 * (q<"r2">(x) - 0.2) - 0.6 * v<"r2">(x) + 0.3 * v<"r1">(x) + 0 * t; };
+  return scene(World<"world">{}, revolute<"r1", axis::z>(drive), bar_to<"crank">({0.4, 0, 0}),
+               bar_to<"coupler">({0, 0.8, 0.3}), FixedTranslation<"ground">({.d = {0.9, 0.8, 0.3}}),
+               revolute<"r2", axis::y>(pd), bar_to<"rocker">({-0.5, 0, 0}),
+               WorldForce<"push">({.value = Vec3d(1.5, -2.0, 0.7)}), first, second,
+               connect<"world.frame_b", "r1.frame_a">, connect<"r1.frame_b", "crank.frame_a">,
+               connect<"crank.frame_b", "j.frame_a">, connect<"j.frame_b", "coupler.frame_a">,
+               connect<"world.frame_b", "ground.frame_a">, connect<"ground.frame_b", "r2.frame_a">,
+               connect<"r2.frame_b", "rocker.frame_a">, connect<"coupler.frame_b", "s.frame_a">,
+               connect<"rocker.frame_b", "s.frame_b">, connect<"coupler.frame_b", "push.frame_b">);
+}
+
+/// jacobian_loops() (its route the one the scene takes) against
+/// jacobian_dual() and, at 1e-6 of the largest entry, central differences;
+/// jacobian() takes it.
+template <class S, class X>
+void check_implicit(const S& scene, double t, const X& x) {
+  jacobian_matrix<S> J;
+  Eigen::Matrix<double, S::n_state, 1> ft, ft_d;
+  test::poison_stack();
+  REQUIRE(detail::jacobian_loops(scene, t, x, J, &ft));
+  test::poison_stack();
+  const auto Jd = jacobian_dual(scene, t, x, &ft_d);
+  const double scale = std::max(1.0, Jd.cwiseAbs().maxCoeff());
+  INFO("largest entry " << scale);
+  CHECK((J - Jd).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+  CHECK((ft - ft_d).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+  CHECK(ft.template tail<S::n_v>().cwiseAbs().maxCoeff() > 0.1);  // the drive of time moves it
+  CHECK((J - jacobian_finite_difference(scene, t, x)).cwiseAbs().maxCoeff() <= 1e-6 * scale);
+  CHECK((jacobian(scene, t, x) - J).cwiseAbs().maxCoeff() == 0.0);
+}
+
+/// States on the loop of scene s (r1 at angle th turning at w, closed from
+/// there) and off it by up to 1e-3 in every coordinate.
+template <class S>
+void check_states(const S& s, std::mt19937& rng) {
+  for (int k = 0; k < 3; ++k) {
+    auto x = neutral_state(s);
+    set_joint<"r1">(s, x, {.q = test::uniform(rng, -0.1, 0.1), .v = test::uniform(rng, -2, 2)});
+    close_loops<"r1">(s, x);
+    check_implicit(s, 0.4, x);
+    for (int i = 0; i < S::n_q; ++i) x[i] += test::uniform(rng, -1e-3, 1e-3);
+    normalize(s, x);
+    for (int i = S::n_q; i < S::n_state; ++i) x[i] += test::uniform(rng, -0.5, 0.5);
+    check_implicit(s, 0.4, x);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a loop whose tree the analytic passes take: drives, a PD law and a force, as dual numbers give them") {
+  std::mt19937 rng(11);
+  const auto cut_s = driven_four_bar(Universal<"j">({.n_a = {0, 0, 1}, .n_b = {1, 0, 0}}), Spherical<"s">{});
+  using S = decltype(cut_s);
+  STATIC_REQUIRE(detail::loops_take_passes<S>());
+  STATIC_REQUIRE(constraint_count<S> == 3);
+  check_states(cut_s, rng);
+  // The planar four-bar of the benchmarks takes them too.
+  STATIC_REQUIRE(detail::loops_take_passes<std::remove_cvref_t<decltype(models::fourbar(models::fourbar_params{}))>>());
+}
+
+TEST_CASE("a loop whose tree holds a ball: inverse dynamics in dual numbers, as dual numbers give it") {
+  // An RSSR loop: "j" a Spherical too, in the tree (the coupler free to spin
+  // about its own line: two degrees of freedom).
+  std::mt19937 rng(12);
+  const auto ball = driven_four_bar(Spherical<"j">{}, Spherical<"s">{});
+  using S = decltype(ball);
+  STATIC_REQUIRE_FALSE(detail::loops_take_passes<S>());  // j's quaternion moves with all three of its rates
+  STATIC_REQUIRE(constraint_count<S> == 3);
+  check_states(ball, rng);
+}
