@@ -381,139 +381,83 @@ constexpr bool loops_take_passes() {
   }
 }
 
-/// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given, for a scene with loops,
-/// by implicit differentiation of its constrained accelerations: v̇ and the
-/// constraint forces λ solve
-///
-///   F = M·v̇ + b − τ − Gᵀ·λ = 0,   C = G·v̇ + Ġ·v = 0,
-///
-/// so that [M −Gᵀ; G 0]·[∂v̇; ∂λ] = −[∂F; ∂C], where ∂F and ∂C are the
-/// derivatives at the solution's v̇ and λ held fixed, then one double solve
-/// with n_state right-hand sides (n_state + 1 WithTime) by the blocks of
-/// the matrix (loop_blocks). ∂C comes from the loops' kinematics in dual
-/// numbers. M⁻¹·∂F comes, where the analytic passes take the tree
-/// (loops_take_passes), from them, given the constraint forces Gᵀ·λ as
-/// forces held fixed (so that their v̇ is the constrained one), plus
-/// M⁻¹·∂(Gᵀ)·λ from the same dual numbers as ∂C; else from inverse
-/// dynamics and the joints' forces in dual numbers (no mass matrix, no
-/// factorization, no loop solve in them). Only where the loop solve was the
-/// exact one (every constraint row kept, no division damped:
-/// dynamics/loop_solve.hpp), and where S and the passes' M pass their pivot
-/// tests, which an exact loop solve rules out; false otherwise, and nothing
-/// written (a redundant constraint or a singular position, which jacobian()
-/// then differentiates by dual numbers, the damping and the rows left out
-/// included). WithTime: ∂f/∂t too, into *dfdt when it is given.
-template <bool WithTime, class S, class State>
-bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
-                         Eigen::Matrix<double, S::n_state, 1>* dfdt) {
-  static_assert(has_loops<S>);
-  S::require_state_size(x);
+/// jacobian_loops_into's route where the analytic passes take the loop's
+/// tree (loops_take_passes): M⁻¹·∂F is the passes' M⁻¹·(∂Q − ∂ID) at the
+/// constrained v̇ (the constraint forces Gᵀ·λ given to them as forces held
+/// fixed) plus M⁻¹·∂(Gᵀ)·λ, and ∂C comes from the loops' kinematics in dual
+/// numbers in the directions of q alone. Every row is the time derivative
+/// of a function of q (Φ̇ = G·v, dynamics/loops.hpp) and every coordinate
+/// is its rate's (q̇ = v), so G = ∂Φ/∂q: ∂(G·v̇)/∂v is zero, and Ġ·v is a
+/// quadratic form in v whose matrix, Φ's second derivatives, is symmetric,
+/// so that ∂(Ġ·v)/∂v = 2·Ġ with Ġ = Σ_k ∂G/∂q_k·v_k, from the same lanes.
+template <bool WithTime, class S>
+bool implicit_by_passes(const S& scene, double t, const double* q, const double* v, const double* a,
+                        const double* lambda, loop_blocks<S>& K, jacobian_matrix<S>& J,
+                        Eigen::Matrix<double, S::n_state, 1>* dfdt) {
   using A = algebra_t<S>;
-  constexpr int nq = S::n_q, nv = S::n_v, m = n_constraints<S>(), n = S::n_state;
-  constexpr bool passes = loops_take_passes<S>();
-  std::array<double, n> copy;
-  const double* const xs = state_numbers<S>(x, copy);
-  const double* q = xs;
-  const double* v = xs + nq;
-  std::array<double, nv> a;
-  std::array<double, m> lambda;
-  bool exact = false;
-  factored_mass<S, double> mass;
-  accelerations_and_constraint_forces(scene, t, q, v, a.data(), lambda.data(), &exact, &mass);
-  if (!exact) return false;
-  loop_blocks<S> K(mass);
-  bool factored = false;
-  // The time's lane: the loops' kinematics do not read it, so the passes'
-  // ∂/∂t needs none.
-  constexpr bool time_lane = WithTime && !passes;
-  using D = jacobian_dual_t<n, time_lane>;
-  alignas(32) std::conditional_t<passes, derivative_rows<S>, std::array<int, 0>> d;
-  dual_passes<n, time_lane>(x, t, [&](const auto& xd, const D& td, int first) {
-    if (first > 0 && !factored) return;
-    (void)td;  // read by the dual-number route alone
-    const D* qd = xd.data();
-    const D* vd = xd.data() + nq;
-    const auto motions = algebra_motions<A>(scene, qd);
-    decltype(auto) pose = pose_motions<A>(scene, qd, motions);
-    const auto k = loop_kinematics_at<S>(scene, pose, vd);
+  constexpr int nq = S::n_q, nv = S::n_v, m = n_constraints<S>();
+  constexpr auto row = derivative_row_rate<S>;
+  using D = jacobian_dual_t<nq, false>;
+  constexpr int W = jacobian_width(nq);
+  std::array<D, nq> qd;
+  std::array<D, nv> vd;
+  for (int i = 0; i < nv; ++i) vd[i] = D(v[i]);
+  std::array<std::array<double, nv>, m> Gdot{};  // Ġ
+  alignas(32) derivative_rows<S> d;
+  for (int first = 0; first < nq; first += W) {
+    for (int i = 0; i < nq; ++i) qd[i] = i >= first && i < first + W ? D::variable(q[i], i - first) : D(q[i]);
+    const auto motions = algebra_motions<A>(scene, qd.data());
+    decltype(auto) pose = pose_motions<A>(scene, qd.data(), motions);
+    const auto k = loop_kinematics_at<S>(scene, pose, vd.data());
     if (first == 0) {
-      factored = K.factor([&](int c, int i) { return k.G(c, i).v; });
-      if (!factored) return;
-      if constexpr (passes) {
-        std::array<double, nv> constraint_forces;  // Gᵀ·λ
-        for (int i = 0; i < nv; ++i) {
-          double f = 0;
-          for (int c = 0; c < m; ++c) f += K.G[c][i] * lambda[c];
-          constraint_forces[i] = f;
-        }
-        factored = acceleration_derivatives(scene, t, q, v, d, nullptr, constraint_forces.data()).index < 0;
-        if (!factored) return;
+      if (!K.factor([&](int c, int i) { return k.G(c, i).v; })) return false;
+      std::array<double, nv> constraint_forces;  // Gᵀ·λ
+      for (int i = 0; i < nv; ++i) {
+        double f = 0;
+        for (int c = 0; c < m; ++c) f += K.G[c][i] * lambda[c];
+        constraint_forces[i] = f;
       }
+      if (acceleration_derivatives(scene, t, q, v, d, nullptr, constraint_forces.data()).index >= 0) return false;
     }
     std::array<D, m> C;  // G·v̇ + Ġ·v at the solution's v̇
     for (int c = 0; c < m; ++c) {
       C[c] = k.bias[c];
       for (int i = 0; i < nv; ++i) C[c] += k.G(c, i) * a[i];
     }
-    if constexpr (passes) {
-      constexpr auto row = derivative_row_rate<S>;
-      lane_columns<n, false>(first, [&](int l, int c) {
-        // x0 = M⁻¹·(−∂F): the passes' M⁻¹·(∂Q − ∂ID) at v̇ (column c's:
-        // a coordinate is its rate's), plus M⁻¹·∂(Gᵀ)·λ.
-        std::array<double, nv> dv;
-        std::array<double, m> dC;
-        for (int i = 0; i < nv; ++i) {
-          double h = 0;
-          for (int e = 0; e < m; ++e) h += k.G(e, i).d[l] * lambda[e];
-          dv[i] = h;
+    for (int l = 0; l < W && first + l < nq; ++l) {
+      const int c = first + l;
+      // x0 = M⁻¹·(−∂F) = M⁻¹·∂(Gᵀ)·λ + the passes' column.
+      std::array<double, nv> dv;
+      std::array<double, m> dC;
+      for (int i = 0; i < nv; ++i) {
+        double h = 0;
+        for (int e = 0; e < m; ++e) {
+          h += k.G(e, i).d[l] * lambda[e];
+          Gdot[e][i] += k.G(e, i).d[l] * v[c];
         }
-        K.solve_mass(dv.data());
-        const int col = c < nq ? c : nv + (c - nq);
-        for (int r = 0; r < nv; ++r) dv[row[r]] += d(r, col);
-        for (int e = 0; e < m; ++e) dC[e] = C[e].d[l];
-        K.constrain(dv.data(), dC.data());
-        for (int i = 0; i < nq; ++i) J(i, c) = c == nq + i ? 1.0 : 0.0;  // q̇ = v
-        for (int i = 0; i < nv; ++i) J(nq + i, c) = dv[i];
-      });
-    } else {
-      std::array<D, nv> ad;
-      for (int i = 0; i < nv; ++i) ad[i] = D(a[i]);
-      link_loads<S, D> n_ext, f_ext;
-      const auto xv = state_view(scene, qd, vd);
-      gather_external<A>(scene, td, xv, motions, pose, n_ext, f_ext);
-      std::array<D, nv> F;
-      inverse_dynamics<A>(scene, motions, vd, ad.data(), n_ext, f_ext, F.data());
-      if constexpr (has_joint_forces<S>()) {
-        std::array<D, nv> tau;
-        joint_forces(scene, td, xv, tau.data());
-        for (int i = 0; i < nv; ++i) F[i] -= tau[i];
+        dv[i] = h;
       }
-      for (int c = 0; c < m; ++c)
-        for (int i = 0; i < nv; ++i) F[i] -= k.G(c, i) * lambda[c];
-      // q̇'s rows: the joints' rates, differentiated as they are written.
-      std::array<D, nq> qdot;
-      joint_rates(scene, qd, vd, qdot.data());
-      lane_columns<n, WithTime>(first, [&](int l, int c) {
-        std::array<double, nv> dv;
-        std::array<double, m> dC;
-        for (int i = 0; i < nv; ++i) dv[i] = -F[i].d[l];
-        K.solve_mass(dv.data());
-        for (int e = 0; e < m; ++e) dC[e] = C[e].d[l];
-        K.constrain(dv.data(), dC.data());
-        if (c < n) {
-          for (int i = 0; i < nq; ++i) J(i, c) = qdot[i].d[l];
-          for (int i = 0; i < nv; ++i) J(nq + i, c) = dv[i];
-        } else if (dfdt) {
-          for (int i = 0; i < nq; ++i) (*dfdt)(i) = qdot[i].d[l];
-          for (int i = 0; i < nv; ++i) (*dfdt)(nq + i) = dv[i];
-        }
-      });
+      K.solve_mass(dv.data());
+      for (int r = 0; r < nv; ++r) dv[row[r]] += d(r, c);
+      for (int e = 0; e < m; ++e) dC[e] = C[e].d[l];
+      K.constrain(dv.data(), dC.data());
+      for (int i = 0; i < nq; ++i) J(i, c) = 0;
+      for (int i = 0; i < nv; ++i) J(nq + i, c) = dv[i];
     }
-  });
-  if constexpr (passes && WithTime) {
-    if (factored && dfdt) {
+  }
+  // ∂/∂v: the passes' columns, ∂C = 2·Ġ; q̇ = v.
+  for (int c = 0; c < nv; ++c) {
+    std::array<double, nv> dv;
+    std::array<double, m> dC;
+    for (int r = 0; r < nv; ++r) dv[row[r]] = d(r, nv + c);
+    for (int e = 0; e < m; ++e) dC[e] = 2 * Gdot[e][c];
+    K.constrain(dv.data(), dC.data());
+    for (int i = 0; i < nq; ++i) J(i, nq + c) = i == c ? 1.0 : 0.0;
+    for (int i = 0; i < nv; ++i) J(nq + i, nq + c) = dv[i];
+  }
+  if constexpr (WithTime) {
+    if (dfdt) {
       // ∂/∂t: the passes' column (C does not read the time).
-      constexpr auto row = derivative_row_rate<S>;
       std::array<double, nv> dv;
       const std::array<double, m> dC{};
       for (int r = 0; r < nv; ++r) dv[row[r]] = d(r, 2 * nv);
@@ -522,7 +466,113 @@ bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matr
       for (int i = 0; i < nv; ++i) (*dfdt)(nq + i) = dv[i];
     }
   }
+  return true;
+}
+
+/// jacobian_loops_into's route for every other loop scene: −∂F from inverse
+/// dynamics, the joints' forces and Gᵀ·λ, ∂C from the loops' kinematics,
+/// all in dual numbers in every direction of the state (and the time
+/// WithTime).
+template <bool WithTime, class S, class State>
+bool implicit_by_dual_numbers(const S& scene, double t, const State& x, const double* a, const double* lambda,
+                              loop_blocks<S>& K, jacobian_matrix<S>& J,
+                              Eigen::Matrix<double, S::n_state, 1>* dfdt) {
+  using A = algebra_t<S>;
+  constexpr int nq = S::n_q, nv = S::n_v, m = n_constraints<S>(), n = S::n_state;
+  using D = jacobian_dual_t<n, WithTime>;
+  std::array<D, nv> ad;
+  for (int i = 0; i < nv; ++i) ad[i] = D(a[i]);
+  bool factored = false;
+  dual_passes<n, WithTime>(x, t, [&](const auto& xd, const D& td, int first) {
+    if (first > 0 && !factored) return;
+    const D* qd = xd.data();
+    const D* vd = xd.data() + nq;
+    const auto motions = algebra_motions<A>(scene, qd);
+    decltype(auto) pose = pose_motions<A>(scene, qd, motions);
+    const auto k = loop_kinematics_at<S>(scene, pose, vd);
+    if (first == 0) {
+      factored = K.factor([&](int c, int i) { return k.G(c, i).v; });
+      if (!factored) return;
+    }
+    link_loads<S, D> n_ext, f_ext;
+    const auto xv = state_view(scene, qd, vd);
+    gather_external<A>(scene, td, xv, motions, pose, n_ext, f_ext);
+    std::array<D, nv> F;
+    inverse_dynamics<A>(scene, motions, vd, ad.data(), n_ext, f_ext, F.data());
+    if constexpr (has_joint_forces<S>()) {
+      std::array<D, nv> tau;
+      joint_forces(scene, td, xv, tau.data());
+      for (int i = 0; i < nv; ++i) F[i] -= tau[i];
+    }
+    std::array<D, m> C;  // G·v̇ + Ġ·v at the solution's v̇
+    for (int c = 0; c < m; ++c) {
+      C[c] = k.bias[c];
+      for (int i = 0; i < nv; ++i) {
+        F[i] -= k.G(c, i) * lambda[c];
+        C[c] += k.G(c, i) * a[i];
+      }
+    }
+    // q̇'s rows: the joints' rates, differentiated as they are written.
+    std::array<D, nq> qdot;
+    joint_rates(scene, qd, vd, qdot.data());
+    lane_columns<n, WithTime>(first, [&](int l, int c) {
+      std::array<double, nv> dv;
+      std::array<double, m> dC;
+      for (int i = 0; i < nv; ++i) dv[i] = -F[i].d[l];
+      K.solve_mass(dv.data());
+      for (int e = 0; e < m; ++e) dC[e] = C[e].d[l];
+      K.constrain(dv.data(), dC.data());
+      if (c < n) {
+        for (int i = 0; i < nq; ++i) J(i, c) = qdot[i].d[l];
+        for (int i = 0; i < nv; ++i) J(nq + i, c) = dv[i];
+      } else if (dfdt) {
+        for (int i = 0; i < nq; ++i) (*dfdt)(i) = qdot[i].d[l];
+        for (int i = 0; i < nv; ++i) (*dfdt)(nq + i) = dv[i];
+      }
+    });
+  });
   return factored;
+}
+
+/// ∂f/∂x at (t, x), and ∂f/∂t into *dfdt when given, for a scene with loops,
+/// by implicit differentiation of its constrained accelerations: v̇ and the
+/// constraint forces λ solve
+///
+///   F = M·v̇ + b − τ − Gᵀ·λ = 0,   C = G·v̇ + Ġ·v = 0,
+///
+/// so that [M −Gᵀ; G 0]·[∂v̇; ∂λ] = −[∂F; ∂C], where ∂F and ∂C are the
+/// derivatives at the solution's v̇ and λ held fixed, then one double solve
+/// for each column by the blocks of the matrix (loop_blocks). Where the
+/// analytic passes take the tree (loops_take_passes), M⁻¹·∂F comes from
+/// them and ∂C from the loops' kinematics in dual numbers in q's directions
+/// (implicit_by_passes); else both from dual numbers in every direction
+/// (implicit_by_dual_numbers; no mass matrix, factorization or loop solve
+/// in them). Only where the loop solve was the exact one (every constraint
+/// row kept, no division damped: dynamics/loop_solve.hpp), and where S and
+/// the passes' M pass their pivot tests, which an exact loop solve rules
+/// out; false otherwise, and nothing written (a redundant constraint or a
+/// singular position, which jacobian() then differentiates by dual numbers,
+/// the damping and the rows left out included). WithTime: ∂f/∂t too, into
+/// *dfdt when it is given.
+template <bool WithTime, class S, class State>
+bool jacobian_loops_into(const S& scene, double t, const State& x, jacobian_matrix<S>& J,
+                         Eigen::Matrix<double, S::n_state, 1>* dfdt) {
+  static_assert(has_loops<S>);
+  S::require_state_size(x);
+  constexpr int nq = S::n_q, nv = S::n_v, m = n_constraints<S>(), n = S::n_state;
+  std::array<double, n> copy;
+  const double* const xs = state_numbers<S>(x, copy);
+  std::array<double, nv> a;
+  std::array<double, m> lambda;
+  bool exact = false;
+  factored_mass<S, double> mass;
+  accelerations_and_constraint_forces(scene, t, xs, xs + nq, a.data(), lambda.data(), &exact, &mass);
+  if (!exact) return false;
+  loop_blocks<S> K(mass);
+  if constexpr (loops_take_passes<S>())
+    return implicit_by_passes<WithTime>(scene, t, xs, xs + nq, a.data(), lambda.data(), K, J, dfdt);
+  else
+    return implicit_by_dual_numbers<WithTime>(scene, t, x, a.data(), lambda.data(), K, J, dfdt);
 }
 
 /// ∂f/∂x at (t, x) into J by the implicit differentiation above.
