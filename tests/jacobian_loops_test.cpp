@@ -95,8 +95,28 @@ TEST_CASE("a loop whose tree the analytic passes take: drives, a PD law and a fo
   STATIC_REQUIRE(detail::loops_take_passes<S>());
   STATIC_REQUIRE(constraint_count<S> == 3);
   check_states(cut_s, rng);
-  // The planar four-bar of the benchmarks takes them too.
+  // The planar four-bar of the benchmarks takes them too, and with a
+  // spring-damper in its cut joint (the cut joint's own force, which the
+  // loop passes on as a load on its two links).
   STATIC_REQUIRE(detail::loops_take_passes<std::remove_cvref_t<decltype(models::fourbar(models::fourbar_params{}))>>());
+  const models::fourbar_params p{};
+  const auto sprung = scene(
+      World<"world">({.g = p.g}), Revolute<"crank_pivot", axis::z>{}, models::bar<"crank">(p.crank, p.m_crank),
+      Revolute<"crank_pin", axis::z>{}, models::bar<"coupler">(p.coupler, p.m_coupler), Revolute<"rocker_pin", axis::z>{},
+      models::bar<"rocker">(p.rocker, p.m_rocker), FixedTranslation<"ground">({.d = Vec3d(p.ground, 0, 0)}),
+      Revolute<"rocker_pivot", axis::z, axis_law::spring_damper>({.c = 30, .d = 2, .phi0 = 0.3}),
+      connect<"world.frame_b", "crank_pivot.frame_a">, connect<"crank_pivot.frame_b", "crank.frame_a">,
+      connect<"crank.frame_b", "crank_pin.frame_a">, connect<"crank_pin.frame_b", "coupler.frame_a">,
+      connect<"coupler.frame_b", "rocker_pin.frame_a">, connect<"rocker_pin.frame_b", "rocker.frame_a">,
+      connect<"world.frame_b", "ground.frame_a">, connect<"ground.frame_b", "rocker_pivot.frame_a">,
+      connect<"rocker.frame_b", "rocker_pivot.frame_b">);
+  STATIC_REQUIRE(detail::loops_take_passes<std::remove_cvref_t<decltype(sprung)>>());
+  for (const double th : {0.4, 1.0, 2.2}) {
+    const auto q = models::fourbar_coordinates(p, th, models::freudenstein_rocker(p, th));
+    std::array<double, 6> x{q[0], q[1], q[2], test::uniform(rng, -3, 3), 0, 0};
+    close_loops<"crank_pivot">(sprung, x);
+    check_implicit(sprung, 0.4, x, false);  // nothing here reads the time
+  }
 }
 
 TEST_CASE("a cut with a row on the turn between its frames, on the passes: as dual numbers give it") {
