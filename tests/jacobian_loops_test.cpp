@@ -151,3 +151,44 @@ TEST_CASE("a loop whose tree holds a ball: inverse dynamics in dual numbers, as 
   STATIC_REQUIRE(constraint_count<S> == 3);
   check_states(ball, rng);
 }
+
+TEST_CASE("loops in the plane through a prismatic joint and loops that share links, on the passes: as dual numbers give them") {
+  // The slider-crank of models/linkages.hpp (its slider a Prismatic in the
+  // loop's tree) and a row of two parallelogram windows (two loops, the
+  // middle post in both), each on its loop and off it.
+  std::mt19937 rng(17);
+  auto wobble = [&](const auto& s, auto x) {
+    using S = std::remove_cvref_t<decltype(s)>;
+    for (int i = 0; i < S::n_q; ++i) x[i] += test::uniform(rng, -1e-3, 1e-3);
+    for (int i = S::n_q; i < S::n_state; ++i) x[i] += test::uniform(rng, -0.5, 0.5);
+    return x;
+  };
+  const auto sc = models::slider_crank(models::slider_crank_params{});
+  STATIC_REQUIRE(detail::loops_take_passes<std::remove_cvref_t<decltype(sc)>>());
+  for (const double th : {0.3, 1.0, 2.5}) {
+    std::array<double, 6> x{th, 0.2, 0.35, test::uniform(rng, -3, 3), 0.5, -0.3};
+    close_loops<"crank_pivot">(sc, x);
+    check_implicit(sc, 0.4, x, false);
+    check_implicit(sc, 0.4, wobble(sc, x), false);
+  }
+  const auto row = models::window_row<2>(models::window_row_params{});
+  using R = std::remove_cvref_t<decltype(row)>;
+  STATIC_REQUIRE(detail::loops_take_passes<R>());
+  STATIC_REQUIRE(constraint_count<R> == 4);
+  for (const double a : {0.6, 1.2}) {
+    typename R::state_type x{};
+    for (int i = 0; i <= 2; ++i) {
+      const int k = R::q_offset("post_pivot" + std::to_string(i));
+      x[k] = a;
+      x[R::n_q + k] = test::uniform(rng, -1, 1);
+    }
+    for (int i = 0; i < 2; ++i) {
+      const int k = R::q_offset("top_pin" + std::to_string(i));
+      x[k] = -a;
+      x[R::n_q + k] = -x[R::n_q + R::q_offset("post_pivot" + std::to_string(i))];
+    }
+    close_loops<"post_pivot0">(row, x);
+    check_implicit(row, 0.4, x, false);
+    check_implicit(row, 0.4, wobble(row, x), false);
+  }
+}

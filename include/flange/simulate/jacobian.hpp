@@ -5,7 +5,8 @@
 // dynamics (dynamics/derivatives.hpp); for a scene with loops whose loop
 // solve is exact at x, by implicit differentiation of its constrained system
 // (jacobian_loops, below: the same passes on its tree where they take it,
-// the loops' kinematics in dual numbers); for every other scene by forward-mode dual
+// the loops' rows differentiated through the tree's motions,
+// dynamics/loop_derivatives.hpp); for every other scene by forward-mode dual
 // numbers through the scalar-templated dynamics (jacobian_dual, which is
 // also there for any scene).
 //
@@ -34,6 +35,7 @@
 #include <utility>
 
 #include "flange/dynamics/derivatives.hpp"
+#include "flange/dynamics/loop_derivatives.hpp"
 #include "flange/math/place_transposed.hpp"
 #include "flange/math/quaternion.hpp"
 #include "flange/math/dual.hpp"
@@ -384,7 +386,8 @@ constexpr bool loops_take_passes() {
 /// jacobian_loops_into's route where the analytic passes take the loop's
 /// tree (loops_take_passes): M⁻¹·∂F is the passes' M⁻¹·(∂Q − ∂ID) at the
 /// constrained v̇ (the constraint forces Gᵀ·λ given to them as forces held
-/// fixed) plus M⁻¹·∂(Gᵀ)·λ, and ∂C comes from the loops' kinematics in dual
+/// fixed) plus M⁻¹·∂(Gᵀ)·λ; ∂G and ∂C come from the tree's motions and their
+/// derivatives in q (dynamics/loop_derivatives.hpp), the cut's rows in dual
 /// numbers in the directions of q alone. Every row is the time derivative
 /// of a function of q (Φ̇ = G·v, dynamics/loops.hpp) and every coordinate
 /// is its rate's (q̇ = v), so G = ∂Φ/∂q: ∂(G·v̇)/∂v is zero, and Ġ·v is a
@@ -394,23 +397,19 @@ template <bool WithTime, class S>
 bool implicit_by_passes(const S& scene, double t, const double* q, const double* v, const double* a,
                         const double* lambda, loop_blocks<S>& K, jacobian_matrix<S>& J,
                         Eigen::Matrix<double, S::n_state, 1>* dfdt) {
-  using A = algebra_t<S>;
   constexpr int nq = S::n_q, nv = S::n_v, m = n_constraints<S>();
   constexpr auto row = derivative_row_rate<S>;
   using D = jacobian_dual_t<nq, false>;
   constexpr int W = jacobian_width(nq);
-  std::array<D, nq> qd;
-  std::array<D, nv> vd;
-  for (int i = 0; i < nv; ++i) vd[i] = D(v[i]);
   std::array<std::array<double, nv>, m> Gdot{};  // Ġ
   alignas(32) derivative_rows<S> d;
+  loop_motion_state<S> st;
+  loop_motions(scene, q, v, a, st);
+  loop_lanes<S, D> k;
   for (int first = 0; first < nq; first += W) {
-    for (int i = 0; i < nq; ++i) qd[i] = i >= first && i < first + W ? D::variable(q[i], i - first) : D(q[i]);
-    const auto motions = algebra_motions<A>(scene, qd.data());
-    decltype(auto) pose = pose_motions<A>(scene, qd.data(), motions);
-    const auto k = loop_kinematics_at<S>(scene, pose, vd.data());
+    loop_rows_lanes(scene, st, first, k);
     if (first == 0) {
-      if (!K.factor([&](int c, int i) { return k.G(c, i).v; })) return false;
+      if (!K.factor([&](int c, int i) { return k.G[c][i].v; })) return false;
       std::array<double, nv> constraint_forces;  // Gᵀ·λ
       for (int i = 0; i < nv; ++i) {
         double f = 0;
@@ -419,11 +418,7 @@ bool implicit_by_passes(const S& scene, double t, const double* q, const double*
       }
       if (acceleration_derivatives(scene, t, q, v, d, nullptr, constraint_forces.data()).index >= 0) return false;
     }
-    std::array<D, m> C;  // G·v̇ + Ġ·v at the solution's v̇
-    for (int c = 0; c < m; ++c) {
-      C[c] = k.bias[c];
-      for (int i = 0; i < nv; ++i) C[c] += k.G(c, i) * a[i];
-    }
+    const auto& C = k.C;  // G·v̇ + Ġ·v at the solution's v̇
     for (int l = 0; l < W && first + l < nq; ++l) {
       const int c = first + l;
       // x0 = M⁻¹·(−∂F) = M⁻¹·∂(Gᵀ)·λ + the passes' column.
@@ -432,8 +427,8 @@ bool implicit_by_passes(const S& scene, double t, const double* q, const double*
       for (int i = 0; i < nv; ++i) {
         double h = 0;
         for (int e = 0; e < m; ++e) {
-          h += k.G(e, i).d[l] * lambda[e];
-          Gdot[e][i] += k.G(e, i).d[l] * v[c];
+          h += k.G[e][i].d[l] * lambda[e];
+          Gdot[e][i] += k.G[e][i].d[l] * v[c];
         }
         dv[i] = h;
       }
