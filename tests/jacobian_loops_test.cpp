@@ -1,8 +1,9 @@
 // The Jacobian of a scene with loops by implicit differentiation
 // (simulate/jacobian.hpp, jacobian_loops): where the analytic passes take
 // the loop's tree (loops_take_passes), M⁻¹·∂F comes from them and the
-// loops' kinematics alone from dual numbers; else inverse dynamics runs in
-// dual numbers too. Either way it is held to jacobian_dual(), which carries
+// loops' rows are differentiated through the tree's motions
+// (dynamics/loop_derivatives.hpp); else inverse dynamics and the loops'
+// kinematics run in dual numbers. Either way it is held to jacobian_dual(), which carries
 // the dual numbers through the mass matrix, its factor and the loop solve:
 // the same derivative by another algorithm, to the solves' round-off (1e-12
 // of the largest entry); and to central differences, to theirs.
