@@ -76,24 +76,43 @@ struct chain_factor {
 
   /// The same factor a node at a time, for a caller's own pass from the
   /// last node up to carry: start(), node(k, …) for k = N − 1 … 0 in turn,
-  /// then finish() where failed < 0. Each node waits on the one before it
-  /// (a product, a sum and a division), so that the factor alone runs at
-  /// that latency; inside a pass with work of its own the processor runs
-  /// the two side by side. A pivot that fails is kept in failed and
+  /// then finish() where failed < 0. Each node's pivot waits on the one
+  /// before it (a product, a difference and a division: node() below), so
+  /// that the factor alone runs at that latency; inside a pass with work of
+  /// its own the processor runs the two side by side. A pivot that fails is kept in failed and
   /// failed_d (the first from node N up), and the factor goes on as if it
   /// had been 1, in finite numbers.
   FLANGE_INLINE void start() {
-    I.setZero();
+    J.setZero();
     failed = -1;
   }
   template <class Own>
   FLANGE_INLINE void node(int k, const std::array<double, C>& col, const Own& A, double diag, double tol) {
     using Vec = Eigen::Matrix<double, C, 1>;
     s[k] = col;
-    I += A;
     const Eigen::Map<const Vec> sk(s[k].data());
-    const Vec u = I * sk;
+    // J holds the node before's inertia ahead of its own downdate, I_{k+1}
+    // + U_{k+1}·U_{k+1}ᵀ / D_{k+1}: U_k and D_k come from J + A_k and that
+    // downdate's two numbers on s_k (c = U_{k+1}ᵀ·s_k), so that the chain
+    // from one node's division to the next one's is a product and a
+    // difference (D_k = s_kᵀ·(J + A_k)·s_k − c²/D_{k+1}), the products with
+    // J + A_k running beside the division before it; the matrix's downdate
+    // is needed by the node after.
+    J += A;
+    Vec u = J * sk;
     double d = sk.dot(u);
+    if (k + 1 < N) {
+      const Eigen::Map<const Vec> up(U[k + 1].data());
+      const double c = up.dot(sk), ce = c * inv[k + 1];
+      u -= up * ce;
+      d -= c * ce;
+      // J −= U_{k+1}·U_{k+1}ᵀ / D_{k+1}, written out: as Eigen's outer
+      // product, a call the compiler may leave out of line (and so out of
+      // the passes' AVX2 build) where a unit holds much code, which ran a
+      // 32-link chain's Jacobian 40 % slower.
+      for (int j = 0; j < C; ++j)
+        for (int i = 0; i < C; ++i) J(i, j) -= Ud[k + 1][i] * U[k + 1][j];
+    }
     if (!(d > tol * diag)) [[unlikely]] {
       if (failed < 0) {
         failed = k;
@@ -107,12 +126,6 @@ struct chain_factor {
       U[k][c] = u[c];
       Ud[k][c] = u[c] * e;
     }
-    // I −= (u·e)·uᵀ, written out: as Eigen's outer product, a call the
-    // compiler may leave out of line (and so out of the passes' AVX2 build)
-    // where a unit holds much code, which ran a 32-link chain's Jacobian 40 %
-    // slower (the planar 16-link chain's runs as fast either way).
-    for (int j = 0; j < C; ++j)
-      for (int i = 0; i < C; ++i) I(i, j) -= Ud[k][i] * u[j];
   }
   FLANGE_INLINE void finish() {
     for (int k = 0; k < N; ++k) {
@@ -127,7 +140,7 @@ struct chain_factor {
   }
 
  private:
-  Eigen::Matrix<double, C, C> I;  ///< the articulated inertia of the nodes factored so far
+  Eigen::Matrix<double, C, C> J;  ///< the last node's inertia before its downdate (node()); zero at the start
 };
 
 /// X ← M⁻¹·X for columns c0 … c0 + W − 1 of X (rows of ldx numbers, row
