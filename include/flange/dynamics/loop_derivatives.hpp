@@ -123,6 +123,8 @@ struct lanes_of<dual<double, N>> {
   static constexpr int value = N;
 };
 
+/// The nodes' columns, velocities and accelerations (at v̇, no gravity) and
+/// the links' poses at (q, v, v̇), into st.
 template <class S>
 void loop_motions(const S& scene, const double* q, const double* v, const double* vdot, loop_motion_state<S>& st) {
   using nodes = derivative_nodes<S>;
