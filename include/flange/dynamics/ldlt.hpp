@@ -176,8 +176,11 @@ template <int N, class T, class MM, class F = dense_factor>
         M(i, j) = x * f.inv_d[j];
       }
     } else {
+      // (Rows from the last down: counted up from j + 1, g++ 12 warned of an
+      // overflow it imagined where a 2 × 2 factor was inlined in a larger
+      // function, -Waggressive-loop-optimizations. Each row is its own.)
 #pragma GCC unroll 16
-      for (int i = j + 1; i < N; ++i) {
+      for (int i = N - 1; i > j; --i) {
         T x = M(i, j);
 #pragma GCC unroll 16
         for (int k = 0; k < j; ++k) x -= M(i, k) * v[k];
