@@ -1055,6 +1055,88 @@ template <class S, bool Articulated>
     });
   }
 
+  // The joints' own forces Q by dual numbers: their values kept for b, their
+  // derivatives for below. They read nothing the passes make and come
+  // before them, where the processor can work on them while the pass down
+  // the tree waits on the links' poses. Computed after the pass up the
+  // tree instead, the spatial arm's Jacobian (three drives that read the
+  // state) took 510 against 487 ns (tools/probes/small_jacobians.cpp, nine
+  // runs in turns) and 501 against 475 ns (build/benchmarks/jacobian, ten
+  // runs in turns; its URDF twin 492 against 497 ns, within the noise).
+  // A force of the joint's own q, v and the time
+  // (an axis law, a drive of t) in those three directions; a drive that reads
+  // the state (τ(t, x)) in every direction of the state and the time, its
+  // row of ∂Q/∂x dense. (A ball transmits nothing of its own.)
+  std::array<std::array<double, 3>, NN> dQ{};
+  std::array<double, NN> Qv;  // Q, by node: into b once the pass up the tree has formed it
+  using reading = state_reading_links<S>;
+  using DW = dual<double, 2 * N + 1>;
+  constexpr auto loads = load_flags<S>::value;
+  constexpr bool loaded = has_link_loads<S>(), local = loaded && local_loads<S>();
+  // The state and the time in every direction, for the drives that read the
+  // state and the force elements that do not take local lanes: q's
+  // directions by rate, a ball's quaternion moving by ½·Q ⊗ (e_k, 0) in its
+  // rotation rate k's.
+  constexpr bool wide = reading::count > 0 || (loaded && !local);
+  std::array<DW, wide ? S::n_q : 0> qw;
+  std::array<DW, wide ? N : 0> vw;
+  if constexpr (wide) {
+    for_links<S>([&](auto l) {
+      constexpr int L = decltype(l)::value;
+      using LI = link_info<S, L>;
+      if constexpr (ball_links<S>[L]) {
+        constexpr int qa = LI::joint_type::quaternion_at;
+        for (int k = 0; k < qa; ++k) qw[LI::q + k] = DW::variable(q[LI::q + k], LI::v + k);
+        const double* Q = q + LI::q + qa;
+        double dQc[3][4];
+        for (int c = 0; c < 3; ++c) {
+          const double e[3] = {double(c == 0), double(c == 1), double(c == 2)};
+          quaternion::rate(Q, e, dQc[c]);
+        }
+        for (int k = 0; k < 4; ++k)
+          qw[LI::q + qa + k] = DW::with_lanes(Q[k], [&](int l) {
+            const int c = l - (LI::v + qa);
+            return c >= 0 && c < 3 ? dQc[c][k] : 0.0;
+          });
+      } else {
+        for (int k = 0; k < LI::joint_type::nq; ++k) qw[LI::q + k] = DW::variable(q[LI::q + k], LI::v + k);
+      }
+    });
+    for (int k = 0; k < N; ++k) vw[k] = DW::variable(v[k], N + k);
+  }
+  std::array<DW, reading::count> dQ_read;
+  if constexpr (has_joint_forces<S>()) {
+    using D = dual<double, 3>;
+    std::array<D, S::n_q> qx;
+    std::array<D, N> vx;
+    for (int k = 0; k < S::n_q; ++k) qx[k] = D(q[k]);
+    for (int k = 0; k < N; ++k) vx[k] = D(v[k]);
+    const auto x = state_view(scene, qx.data(), vx.data());
+    const D td = D::variable(t, 2);
+    for_links<S>([&](auto l) {
+      constexpr int L = decltype(l)::value, n = nodes::table.last[L];
+      using LI = link_info<S, L>;
+      using J = typename LI::joint_type;
+      if constexpr (force_reads_state<J>()) {
+        constexpr int k = reading::index_of(L);
+        const auto xw = state_view(scene, qw.data(), vw.data());
+        DW& tau = dQ_read[k];
+        scene.template component<LI::joint>().generalized_force(DW::variable(t, 2 * N), xw, qw.data() + LI::q,
+                                                                 vw.data() + LI::v, &tau);
+        Qv[n] = tau.v;
+      } else if constexpr (has_generalized_force<J>) {
+        qx[LI::q] = D::variable(q[LI::q], 0);
+        vx[LI::v] = D::variable(v[LI::v], 1);
+        D tau;
+        scene.template component<LI::joint>().generalized_force(td, x, qx.data() + LI::q, vx.data() + LI::v, &tau);
+        Qv[n] = tau.v;
+        dQ[n] = {tau.d[0], tau.d[1], tau.d[2]};
+        qx[LI::q] = D(q[LI::q]);
+        vx[LI::v] = D(v[LI::v]);
+      }
+    });
+  }
+
   // Down the tree: poses, the columns and velocities in the passes' frame, and the
   // accelerations as they would be at v̇ = 0 (acc⁰; the true ones follow once
   // v̇ is known, below); each body's inertia, its wrench at acc⁰ and its
@@ -1358,79 +1440,13 @@ template <class S, bool Articulated>
       F[top(P)] += F[t];
     }
   });
-  // The joints' own forces Q by dual numbers: their values into b, their
-  // derivatives kept for below. A force of the joint's own q, v and the time
-  // (an axis law, a drive of t) in those three directions; a drive that reads
-  // the state (τ(t, x)) in every direction of the state and the time, its
-  // row of ∂Q/∂x dense. (A ball transmits nothing of its own.)
-  std::array<std::array<double, 3>, NN> dQ{};
-  using reading = state_reading_links<S>;
-  using DW = dual<double, 2 * N + 1>;
-  constexpr auto loads = load_flags<S>::value;
-  constexpr bool loaded = has_link_loads<S>(), local = loaded && local_loads<S>();
-  // The state and the time in every direction, for the drives that read the
-  // state and the force elements that do not take local lanes: q's
-  // directions by rate, a ball's quaternion moving by ½·Q ⊗ (e_k, 0) in its
-  // rotation rate k's.
-  constexpr bool wide = reading::count > 0 || (loaded && !local);
-  std::array<DW, wide ? S::n_q : 0> qw;
-  std::array<DW, wide ? N : 0> vw;
-  if constexpr (wide) {
+  // Q joins b: b = −s·F + Q, and the loads' s·W below.
+  if constexpr (has_joint_forces<S>())
     for_links<S>([&](auto l) {
       constexpr int L = decltype(l)::value;
-      using LI = link_info<S, L>;
-      if constexpr (ball_links<S>[L]) {
-        constexpr int qa = LI::joint_type::quaternion_at;
-        for (int k = 0; k < qa; ++k) qw[LI::q + k] = DW::variable(q[LI::q + k], LI::v + k);
-        const double* Q = q + LI::q + qa;
-        double dQc[3][4];
-        for (int c = 0; c < 3; ++c) {
-          const double e[3] = {double(c == 0), double(c == 1), double(c == 2)};
-          quaternion::rate(Q, e, dQc[c]);
-        }
-        for (int k = 0; k < 4; ++k)
-          qw[LI::q + qa + k] = DW::with_lanes(Q[k], [&](int l) {
-            const int c = l - (LI::v + qa);
-            return c >= 0 && c < 3 ? dQc[c][k] : 0.0;
-          });
-      } else {
-        for (int k = 0; k < LI::joint_type::nq; ++k) qw[LI::q + k] = DW::variable(q[LI::q + k], LI::v + k);
-      }
+      using J = typename link_info<S, L>::joint_type;
+      if constexpr (force_reads_state<J>() || has_generalized_force<J>) b[last[L] - 1] += Qv[last[L]];
     });
-    for (int k = 0; k < N; ++k) vw[k] = DW::variable(v[k], N + k);
-  }
-  std::array<DW, reading::count> dQ_read;
-  if constexpr (has_joint_forces<S>()) {
-    using D = dual<double, 3>;
-    std::array<D, S::n_q> qx;
-    std::array<D, N> vx;
-    for (int k = 0; k < S::n_q; ++k) qx[k] = D(q[k]);
-    for (int k = 0; k < N; ++k) vx[k] = D(v[k]);
-    const auto x = state_view(scene, qx.data(), vx.data());
-    const D td = D::variable(t, 2);
-    for_links<S>([&](auto l) {
-      constexpr int L = decltype(l)::value, n = nodes::table.last[L];
-      using LI = link_info<S, L>;
-      using J = typename LI::joint_type;
-      if constexpr (force_reads_state<J>()) {
-        constexpr int k = reading::index_of(L);
-        const auto xw = state_view(scene, qw.data(), vw.data());
-        DW& tau = dQ_read[k];
-        scene.template component<LI::joint>().generalized_force(DW::variable(t, 2 * N), xw, qw.data() + LI::q,
-                                                                 vw.data() + LI::v, &tau);
-        b[n - 1] += tau.v;
-      } else if constexpr (has_generalized_force<J>) {
-        qx[LI::q] = D::variable(q[LI::q], 0);
-        vx[LI::v] = D::variable(v[LI::v], 1);
-        D tau;
-        scene.template component<LI::joint>().generalized_force(td, x, qx.data() + LI::q, vx.data() + LI::v, &tau);
-        b[n - 1] += tau.v;
-        dQ[n] = {tau.d[0], tau.d[1], tau.d[2]};
-        qx[LI::q] = D(q[LI::q]);
-        vx[LI::v] = D(v[LI::v]);
-      }
-    });
-  }
 
   // The force elements' loads on each link, as wrenches W_L at the passes'
   // fixed point: they enter τ_i as −s_iᵀ·Σ_{L in i's subtree} W_L, into b
